@@ -1,0 +1,143 @@
+//! Typed errors. Every error carries the data a user needs to act on it: which field, which value,
+//! what was expected; which step, which time, which iteration, which residual.
+
+use std::fmt::Display;
+
+/// Invalid user input: a scene value, a parameter, a mesh.
+///
+/// Displayed as `invalid <field> = <value>: expected <expected>`.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("invalid {field} = {value}: expected {expected}")]
+pub struct InputError {
+    /// Dotted path of the offending field, as written in a scene (`rod.viscosity`, `mesh.elements`).
+    pub field: String,
+    /// The value that was given, formatted.
+    pub value: String,
+    /// What a valid value looks like.
+    pub expected: String,
+}
+
+impl InputError {
+    /// An input error for `field` holding `value`, which should have been `expected`.
+    pub fn new(field: impl Into<String>, value: impl Display, expected: impl Into<String>) -> Self {
+        Self {
+            field: field.into(),
+            value: value.to_string(),
+            expected: expected.into(),
+        }
+    }
+
+    /// The same error with `prefix.` prepended to its field path.
+    pub fn within(mut self, prefix: &str) -> Self {
+        self.field = format!("{prefix}.{}", self.field);
+        self
+    }
+}
+
+/// `value` if it is finite and strictly positive.
+pub fn require_positive(field: &str, value: f64) -> Result<f64, InputError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(InputError::new(field, value, "a finite number > 0"))
+    }
+}
+
+/// `value` if it is finite and non-negative.
+pub fn require_nonnegative(field: &str, value: f64) -> Result<f64, InputError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(InputError::new(field, value, "a finite number >= 0"))
+    }
+}
+
+/// `value` if it is finite.
+pub fn require_finite(field: &str, value: f64) -> Result<f64, InputError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(InputError::new(field, value, "a finite number"))
+    }
+}
+
+/// Checks that `values` starts at 0 and increases strictly through finite numbers; `field` is the
+/// scene path of the list (`mesh.nodes`, `time.times`) and `minimum` its required length.
+pub fn require_increasing_from_zero(
+    field: &str,
+    values: &[f64],
+    minimum: usize,
+    what: &str,
+) -> Result<(), InputError> {
+    if values.len() < minimum {
+        return Err(InputError::new(
+            field,
+            format!("{} values", values.len()),
+            format!("at least {minimum} {what}"),
+        ));
+    }
+    if values[0] != 0.0 {
+        return Err(InputError::new(format!("{field}[0]"), values[0], "0"));
+    }
+    for i in 1..values.len() {
+        if !values[i].is_finite() || values[i] <= values[i - 1] {
+            return Err(InputError::new(
+                format!("{field}[{i}]"),
+                values[i],
+                format!("a finite number > {field}[{}] = {}", i - 1, values[i - 1]),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A solver failure, with where and when it happened.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolveError {
+    /// The nonsmooth step equation was not solved to round-off within the iteration budget.
+    #[error(
+        "step {step} (t = {time}): semismooth Newton did not converge in {iterations} iterations \
+         (residual {residual:e}, tolerance {tolerance:e})"
+    )]
+    NewtonNotConverged {
+        step: usize,
+        time: f64,
+        iterations: usize,
+        residual: f64,
+        tolerance: f64,
+    },
+    /// A non-finite number appeared; nothing after it would be meaningful.
+    #[error("step {step} (t = {time}): non-finite {quantity} ({value}){hint}")]
+    NonFinite {
+        step: usize,
+        time: f64,
+        quantity: String,
+        value: f64,
+        /// Why it probably happened (e.g. an explicit step above its stability bound), or empty.
+        hint: String,
+    },
+    /// A factorization met a zero, negative or non-finite pivot.
+    #[error("singular or indefinite {operator}: pivot {pivot:e} at row {row}")]
+    Singular {
+        operator: String,
+        row: usize,
+        pivot: f64,
+    },
+}
+
+/// Any error of the crate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// Invalid input.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A solver failure.
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    /// A scene file that cannot be read or parsed.
+    #[error("scene {source_name}: {message}")]
+    Scene {
+        source_name: String,
+        message: String,
+    },
+}

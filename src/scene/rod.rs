@@ -1,0 +1,461 @@
+//! The rod scene (`model = "rod"`): problem T1D with general data, its discretization and outputs.
+//!
+//! ```toml
+//! model = "rod"
+//! title = "Fernández–Sofonea rod, p0 = 6"
+//!
+//! [rod]
+//! length = 1.0                 # L (m)
+//! final_time = 0.5             # T (s)
+//! viscosity = 1.0              # a (N·s/m)
+//! elasticity = 1.0             # b (N/m)
+//! load = 10.0                  # f0 (N/m): a number or an expression of x and t, e.g. "10*(1 + x*t)"
+//! initial_displacement = 0.0   # u0 (m): a number or an expression of x, with u0(0) = 0
+//!
+//! [foundation]
+//! law = "lubricated"           # "linear" (2.7) β r | "lubricated" (2.8) β r_+ + p0 | "prescribed" (2.9) S
+//! beta = 1.0                   # β (N·s/m), linear and lubricated
+//! p0 = 6.0                     # oil pressure (N), lubricated: a number or an expression of t
+//! # stress = "2 + t"           # S (N), prescribed: a number or an expression of t
+//!
+//! [mesh]
+//! elements = 100               # M
+//! grading = 1.0                # power-law exponent q ≥ 1 (1: uniform)
+//! graded_towards = "end"       # "start" (x = 0) or "end" (x = L)
+//! # nodes = [0.0, 0.3, 1.0]    # explicit nodes instead of elements/grading
+//!
+//! [time]
+//! steps = 50                   # N
+//! grading = 1.0                # t_n = T (n/N)^q
+//! # times = [0.0, 0.1, 0.5]    # explicit times instead of steps/grading
+//! scheme = "explicit"          # "explicit" (the paper's) | "implicit" | "midpoint"
+//!
+//! [output]
+//! times = [0.1, 0.25, 0.5]     # snapshot times (grid times)
+//! probes = [0.25, 0.5, 1.0]    # points whose displacement history is recorded
+//! post_process_velocity = false
+//!
+//! [solver]
+//! newton_relative_tolerance = 1.7763568394002505e-15
+//! newton_max_iterations = 60
+//! load_quadrature_points = 4
+//! ```
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use crate::contact::normal_law::FoundationLaw;
+use crate::error::{Error, InputError};
+use crate::mesh::interval::{GradingEnd, IntervalMesh};
+use crate::model::quasistatic::rod::RodProblem;
+use crate::model::quasistatic::rod_output::{RodOutputRequest, RodSolution};
+use crate::model::quasistatic::rod_solver::{RodParams, RodSolver};
+use crate::model::quasistatic::scheme::TimeScheme;
+use crate::scene::field_spec::FieldSpec;
+use crate::solve::scalar_semismooth::ScalarNewtonParams;
+use crate::time::grid::TimeGrid;
+
+/// The file format of a rod scene (see the module docs).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RodSceneFile {
+    pub model: String,
+    #[serde(default)]
+    pub title: String,
+    pub rod: RodSection,
+    pub foundation: FoundationSection,
+    pub mesh: MeshSection,
+    pub time: TimeSection,
+    #[serde(default)]
+    pub output: OutputSection,
+    #[serde(default)]
+    pub solver: SolverSection,
+}
+
+/// `[rod]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RodSection {
+    pub length: f64,
+    pub final_time: f64,
+    pub viscosity: f64,
+    pub elasticity: f64,
+    #[serde(default)]
+    pub load: FieldSpec,
+    #[serde(default)]
+    pub initial_displacement: FieldSpec,
+}
+
+/// `[foundation]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FoundationSection {
+    pub law: String,
+    pub beta: Option<f64>,
+    pub p0: Option<FieldSpec>,
+    pub stress: Option<FieldSpec>,
+}
+
+/// `[mesh]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSection {
+    pub elements: Option<usize>,
+    pub grading: Option<f64>,
+    pub graded_towards: Option<GradingEnd>,
+    pub nodes: Option<Vec<f64>>,
+}
+
+/// `[time]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSection {
+    pub steps: Option<usize>,
+    pub grading: Option<f64>,
+    pub times: Option<Vec<f64>>,
+    #[serde(default)]
+    pub scheme: TimeScheme,
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    #[serde(default)]
+    pub times: Vec<f64>,
+    #[serde(default)]
+    pub probes: Vec<f64>,
+    #[serde(default)]
+    pub post_process_velocity: bool,
+}
+
+/// `[solver]`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSection {
+    pub newton_relative_tolerance: Option<f64>,
+    pub newton_max_iterations: Option<usize>,
+    pub load_quadrature_points: Option<usize>,
+}
+
+/// A validated rod scene.
+#[derive(Debug, Clone)]
+pub struct RodScene {
+    pub title: String,
+    pub problem: RodProblem,
+    pub mesh: IntervalMesh,
+    pub grid: TimeGrid,
+    pub scheme: TimeScheme,
+    pub params: RodParams,
+    pub output: RodOutputRequest,
+}
+
+impl RodScene {
+    /// Parses and validates a scene from TOML text; `source_name` (a file name) labels errors.
+    pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, Error> {
+        let file: RodSceneFile = toml::from_str(text).map_err(|e| Error::Scene {
+            source_name: source_name.to_string(),
+            message: e.to_string(),
+        })?;
+        Self::from_file(&file)
+    }
+
+    /// Validates a parsed scene file.
+    pub fn from_file(file: &RodSceneFile) -> Result<Self, Error> {
+        if file.model != "rod" {
+            return Err(InputError::new("model", &file.model, "\"rod\"").into());
+        }
+        let foundation = foundation_law(&file.foundation)?;
+        let problem = RodProblem {
+            length: file.rod.length,
+            final_time: file.rod.final_time,
+            viscosity: file.rod.viscosity,
+            elasticity: file.rod.elasticity,
+            load: file.rod.load.to_field("rod.load")?,
+            initial_displacement: file
+                .rod
+                .initial_displacement
+                .to_field("rod.initial_displacement")?,
+            foundation: Arc::new(foundation),
+        };
+        problem.validate()?;
+        let mesh = mesh(&file.mesh, problem.length)?;
+        let grid = grid(&file.time, problem.final_time)?;
+        let mut params = RodParams {
+            post_process_velocity: file.output.post_process_velocity,
+            ..RodParams::default()
+        };
+        let defaults = ScalarNewtonParams::default();
+        params.newton.relative_tolerance = file
+            .solver
+            .newton_relative_tolerance
+            .unwrap_or(defaults.relative_tolerance);
+        params.newton.max_iterations = file
+            .solver
+            .newton_max_iterations
+            .unwrap_or(defaults.max_iterations);
+        if let Some(q) = file.solver.load_quadrature_points {
+            params.load_quadrature_points = q;
+        }
+        params.validate().map_err(|e| {
+            if e.field.starts_with("newton.") {
+                InputError {
+                    field: e.field.replacen("newton.", "solver.newton_", 1),
+                    ..e
+                }
+            } else {
+                e
+            }
+        })?;
+        Ok(Self {
+            title: file.title.clone(),
+            problem,
+            mesh,
+            grid,
+            scheme: file.time.scheme,
+            params,
+            output: RodOutputRequest {
+                snapshot_times: file.output.times.clone(),
+                probes: file.output.probes.clone(),
+            },
+        })
+    }
+
+    /// The solver of this scene (factored, ready to run).
+    pub fn solver(&self) -> Result<RodSolver, Error> {
+        RodSolver::new(
+            &self.problem,
+            self.mesh.clone(),
+            self.grid.clone(),
+            self.scheme,
+            self.params,
+        )
+    }
+
+    /// Solves the scene and records its outputs.
+    pub fn solve(&self) -> Result<RodSolution, Error> {
+        self.solver()?.solve(&self.output)
+    }
+}
+
+fn foundation_law(f: &FoundationSection) -> Result<FoundationLaw, Error> {
+    let law = match f.law.as_str() {
+        "linear" => {
+            reject("foundation.p0", f.p0.is_some(), "linear")?;
+            reject("foundation.stress", f.stress.is_some(), "linear")?;
+            FoundationLaw::Linear {
+                beta: required("foundation.beta", f.beta)?,
+            }
+        }
+        "lubricated" => {
+            reject("foundation.stress", f.stress.is_some(), "lubricated")?;
+            FoundationLaw::Lubricated {
+                beta: required("foundation.beta", f.beta)?,
+                p0: required("foundation.p0", f.p0.clone())?.to_field("foundation.p0")?,
+            }
+        }
+        "prescribed" => {
+            reject("foundation.beta", f.beta.is_some(), "prescribed")?;
+            reject("foundation.p0", f.p0.is_some(), "prescribed")?;
+            FoundationLaw::Prescribed {
+                stress: required("foundation.stress", f.stress.clone())?
+                    .to_field("foundation.stress")?,
+            }
+        }
+        other => {
+            return Err(InputError::new(
+                "foundation.law",
+                format!("\"{other}\""),
+                "\"linear\" (2.7), \"lubricated\" (2.8) or \"prescribed\" (2.9)",
+            )
+            .into())
+        }
+    };
+    crate::contact::normal_law::NormalLaw::validate(&law)?;
+    Ok(law)
+}
+
+fn required<T>(field: &str, value: Option<T>) -> Result<T, InputError> {
+    value.ok_or_else(|| InputError::new(field, "(missing)", "a value for this law"))
+}
+
+fn reject(field: &str, present: bool, law: &str) -> Result<(), InputError> {
+    if present {
+        Err(InputError::new(
+            field,
+            "(given)",
+            format!("no such key for law = \"{law}\""),
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+fn mesh(m: &MeshSection, length: f64) -> Result<IntervalMesh, InputError> {
+    match (&m.nodes, m.elements) {
+        (Some(_), Some(_)) => Err(InputError::new(
+            "mesh.nodes",
+            "(given with mesh.elements)",
+            "either mesh.nodes or mesh.elements, not both",
+        )),
+        (Some(nodes), None) => {
+            let mesh = IntervalMesh::from_nodes(nodes.clone())?;
+            if (mesh.length() - length).abs() > 1e-12 * length {
+                return Err(InputError::new(
+                    format!("mesh.nodes[{}]", nodes.len() - 1),
+                    mesh.length(),
+                    format!("the rod length {length}"),
+                ));
+            }
+            Ok(mesh)
+        }
+        (None, Some(elements)) => {
+            let q = m.grading.unwrap_or(1.0);
+            if q == 1.0 {
+                IntervalMesh::uniform(length, elements)
+            } else {
+                IntervalMesh::graded(
+                    length,
+                    elements,
+                    q,
+                    m.graded_towards.unwrap_or(GradingEnd::End),
+                )
+                .map_err(|e| InputError {
+                    field: "mesh.grading".into(),
+                    ..e
+                })
+            }
+        }
+        (None, None) => Err(InputError::new(
+            "mesh.elements",
+            "(missing)",
+            "a number of elements >= 1 (or mesh.nodes)",
+        )),
+    }
+}
+
+fn grid(t: &TimeSection, final_time: f64) -> Result<TimeGrid, InputError> {
+    match (&t.times, t.steps) {
+        (Some(_), Some(_)) => Err(InputError::new(
+            "time.times",
+            "(given with time.steps)",
+            "either time.times or time.steps, not both",
+        )),
+        (Some(times), None) => {
+            let grid = TimeGrid::from_times(times.clone())?;
+            if (grid.final_time() - final_time).abs() > 1e-12 * final_time {
+                return Err(InputError::new(
+                    format!("time.times[{}]", times.len() - 1),
+                    grid.final_time(),
+                    format!("the final time {final_time}"),
+                ));
+            }
+            Ok(grid)
+        }
+        (None, Some(steps)) => {
+            let q = t.grading.unwrap_or(1.0);
+            if q == 1.0 {
+                TimeGrid::uniform(final_time, steps)
+            } else {
+                TimeGrid::graded(final_time, steps, q)
+            }
+        }
+        (None, None) => Err(InputError::new(
+            "time.steps",
+            "(missing)",
+            "a number of steps >= 1 (or time.times)",
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Rod scenes: the documented example parses; typos, missing keys and bad values are errors
+    //! that name the field.
+    use super::*;
+
+    const PAPER: &str = r#"
+model = "rod"
+title = "paper p0 = 6"
+[rod]
+length = 1.0
+final_time = 0.5
+viscosity = 1.0
+elasticity = 1.0
+load = 10
+[foundation]
+law = "lubricated"
+beta = 1.0
+p0 = 6.0
+[mesh]
+elements = 100
+[time]
+steps = 50
+[output]
+times = [0.25, 0.5]
+probes = [0.25, 1.0]
+"#;
+
+    #[test]
+    fn paper_scene_parses_and_solves() {
+        let scene = RodScene::from_toml_str(PAPER, "paper.toml").unwrap();
+        let sol = scene.solve().unwrap();
+        assert_eq!(sol.snapshots.len(), 2);
+        assert!((sol.end_displacement[50] + 0.394993932862).abs() < 1e-11);
+    }
+
+    #[test]
+    fn misspelt_key_is_an_error() {
+        let text = PAPER.replace("viscosity", "viscosty");
+        let err = RodScene::from_toml_str(&text, "x.toml").unwrap_err();
+        assert!(matches!(err, Error::Scene { .. }), "{err}");
+        assert!(err.to_string().contains("viscosty"), "{err}");
+    }
+
+    #[test]
+    fn negative_viscosity_names_the_field_and_value() {
+        let text = PAPER.replace("viscosity = 1.0", "viscosity = -2.0");
+        match RodScene::from_toml_str(&text, "x.toml").unwrap_err() {
+            Error::Input(e) => {
+                assert_eq!(e.field, "rod.viscosity");
+                assert_eq!(e.value, "-2");
+            }
+            other => panic!("{other}"),
+        }
+    }
+
+    #[test]
+    fn unknown_law_and_missing_p0_are_errors() {
+        let text = PAPER.replace("\"lubricated\"", "\"sticky\"");
+        assert!(RodScene::from_toml_str(&text, "x")
+            .unwrap_err()
+            .to_string()
+            .contains("foundation.law"));
+        let text = PAPER.replace("p0 = 6.0", "");
+        assert!(RodScene::from_toml_str(&text, "x")
+            .unwrap_err()
+            .to_string()
+            .contains("foundation.p0"));
+    }
+
+    #[test]
+    fn snapshot_time_off_the_grid_is_an_error() {
+        let text = PAPER.replace("times = [0.25, 0.5]", "times = [0.255]");
+        let err = RodScene::from_toml_str(&text, "x")
+            .unwrap()
+            .solve()
+            .unwrap_err();
+        assert!(err.to_string().contains("output.times[0]"), "{err}");
+    }
+
+    #[test]
+    fn expression_load_takes_the_space_time_path() {
+        let text = PAPER.replace("load = 10", "load = \"10*(1 + x*t)\"");
+        let sol = RodScene::from_toml_str(&text, "x")
+            .unwrap()
+            .solve()
+            .unwrap();
+        assert_eq!(sol.stats.load_path, "space_time");
+    }
+}

@@ -1,0 +1,206 @@
+//! `cargo run --release --bin verify`: runs the verification cases, writes `reports/`, and exits
+//! non-zero when a gate fails.
+//!
+//! - `verify`                       the default tier (every case), reports in `reports/`
+//! - `verify --quick`               the CI tier (cases marked `tier = "quick"`), reports in `reports/quick/`
+//! - `verify --case ID [--case ID]` selected cases
+//! - `verify --list`                the catalogue
+//! - `verify scene FILE.toml --out DIR`   run a user's scene
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+
+use contactlab_verify::case::{Case, Tier};
+use contactlab_verify::report::markdown;
+use contactlab_verify::report::metadata::Metadata;
+use contactlab_verify::run::{run_case, RunContext};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "verify",
+    about = "contactlab verification: exact solutions, rates, gates, reports"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    /// The CI tier: only cases with tier = "quick" (reports in <out>/quick unless --out is given).
+    #[arg(long)]
+    quick: bool,
+    /// Run only these cases (repeatable).
+    #[arg(long = "case", value_name = "ID")]
+    cases: Vec<String>,
+    /// List the cases and exit.
+    #[arg(long)]
+    list: bool,
+    /// The reports directory (default: <repository>/reports).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// The case directory (default: <repository>/verification/cases).
+    #[arg(long)]
+    cases_dir: Option<PathBuf>,
+    /// Worker threads for sweeps (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// No progress bars.
+    #[arg(long)]
+    no_progress: bool,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a scene file and write its solution (and errors, with an [exact] table) as JSON.
+    Scene {
+        /// The scene (TOML).
+        file: PathBuf,
+        /// Output directory.
+        #[arg(long, default_value = "scene-out")]
+        out: PathBuf,
+    },
+}
+
+fn repository_root() -> PathBuf {
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    manifest.parent().map(PathBuf::from).unwrap_or(manifest)
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    if let Some(Command::Scene { file, out }) = &cli.command {
+        return match contactlab_verify::scene_run::run_scene(file, out) {
+            Ok(summary) => {
+                println!("{summary}");
+                println!("wrote {}", out.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
+    if let Some(n) = cli.threads {
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+        {
+            eprintln!("error: --threads {n}: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    let root = repository_root();
+    let cases_dir = cli
+        .cases_dir
+        .clone()
+        .unwrap_or_else(|| root.join("verification/cases"));
+    let cases = match Case::load_all(&cases_dir) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if cli.list {
+        for c in &cases {
+            println!(
+                "{:<36} {:<14} {:<8} {}",
+                c.file.id,
+                format!("{:?}", c.file.kind),
+                format!("{:?}", c.file.tier).to_lowercase(),
+                c.file.title
+            );
+        }
+        return ExitCode::SUCCESS;
+    }
+    for id in &cli.cases {
+        if !cases.iter().any(|c| &c.file.id == id) {
+            eprintln!("error: no case `{id}` (see `verify --list`)");
+            return ExitCode::from(2);
+        }
+    }
+    let selected: Vec<&Case> = cases
+        .iter()
+        .filter(|c| {
+            if !cli.cases.is_empty() {
+                cli.cases.contains(&c.file.id)
+            } else if cli.quick {
+                c.file.tier == Tier::Quick
+            } else {
+                true
+            }
+        })
+        .collect();
+    let tier = if cli.quick { "quick" } else { "default" };
+    let out = cli.out.clone().unwrap_or_else(|| {
+        if cli.quick {
+            root.join("reports/quick")
+        } else {
+            root.join("reports")
+        }
+    });
+    if let Err(e) = std::fs::create_dir_all(&out) {
+        eprintln!("error: cannot create {}: {e}", out.display());
+        return ExitCode::from(2);
+    }
+    let metadata = Metadata::collect(tier);
+    let ctx = RunContext {
+        out_dir: out.clone(),
+        metadata: metadata.clone(),
+        progress: !cli.no_progress,
+    };
+    let start = Instant::now();
+    let mut reports = Vec::new();
+    for case in selected {
+        let report = run_case(case, &ctx);
+        println!(
+            "{:<36} {:<5} {:>7.2} s  {}",
+            report.id,
+            if report.passed { "PASS" } else { "FAIL" },
+            report.wall_seconds,
+            report.failure.clone().unwrap_or_default()
+        );
+        for g in report.gates.iter().filter(|g| !g.passed) {
+            for c in g.checks.iter().filter(|c| !c.passed) {
+                println!(
+                    "    gate `{}`: {} = {:.6e}, expected {}",
+                    g.name, c.name, c.observed, c.limit
+                );
+            }
+        }
+        let json = match serde_json::to_string_pretty(&report) {
+            Ok(j) => j,
+            Err(e) => {
+                eprintln!("error: serializing {}: {e}", report.id);
+                return ExitCode::from(2);
+            }
+        };
+        let path = out.join(format!("{}.json", report.id));
+        if let Err(e) = std::fs::write(&path, json) {
+            eprintln!("error: writing {}: {e}", path.display());
+            return ExitCode::from(2);
+        }
+        reports.push(report);
+    }
+    let total = start.elapsed().as_secs_f64();
+    let md = markdown::render(&reports, &metadata, total);
+    let md_path = out.join("report.md");
+    if let Err(e) = std::fs::write(&md_path, md) {
+        eprintln!("error: writing {}: {e}", md_path.display());
+        return ExitCode::from(2);
+    }
+    let failed = reports.iter().filter(|r| !r.passed).count();
+    println!(
+        "{} case(s), {} failed, {:.1} s; report: {}",
+        reports.len(),
+        failed,
+        total,
+        md_path.display()
+    );
+    if failed > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}

@@ -1,0 +1,486 @@
+//! The case catalogue: one TOML file per verification case in `verification/cases/`.
+//!
+//! A case names its kind, its tier, the physics (an inline scene or a manufactured solution), what
+//! to run (sweeps, stability runs, extremes, work–precision levels) and its gates. The format is
+//! documented in `verification/cases/README.md`; unknown keys are errors.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use contactlab::mesh::interval::GradingEnd;
+use contactlab::model::quasistatic::scheme::TimeScheme;
+
+use crate::rod_errors::ROD_ERRORS;
+
+/// What a case does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CaseKind {
+    /// Sweeps in h and k against an exact solution; rate gates, model gates, pinned references.
+    Convergence,
+    /// The explicit scheme's step bound: prediction against observed amplification.
+    Stability,
+    /// Data at the edge of the admissible range: each gives correct numbers or a clear error.
+    Extremes,
+    /// Error against cost for each scheme.
+    WorkPrecision,
+    /// Timing of the physical-limit run, with a budget.
+    Performance,
+}
+
+/// Which runs include the case: `quick` cases run in `--quick` (CI) and in the default tier.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Tier {
+    Quick,
+    #[default]
+    Default,
+}
+
+/// The parameter a rate is measured against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Against {
+    H,
+    K,
+    HPlusK,
+}
+
+impl Against {
+    /// The label used in reports.
+    pub fn label(self) -> &'static str {
+        match self {
+            Against::H => "h",
+            Against::K => "k",
+            Against::HPlusK => "h + k",
+        }
+    }
+}
+
+/// A case file.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    pub id: String,
+    pub title: String,
+    pub kind: CaseKind,
+    #[serde(default)]
+    pub tier: Tier,
+    /// Why the gates expect what they expect (regularity, floors, superconvergence).
+    pub explanation: String,
+    /// An inline rod scene (`model = "rod"`); mesh and time entries are overridden per run.
+    pub scene: Option<toml::Table>,
+    pub exact: Option<ExactSpec>,
+    #[serde(default)]
+    pub discretization: DiscretizationSpec,
+    #[serde(default)]
+    pub sweep: Vec<SweepSpec>,
+    #[serde(default)]
+    pub gate: Vec<RateGateSpec>,
+    #[serde(default)]
+    pub model_gate: Vec<ModelGateSpec>,
+    #[serde(default)]
+    pub reference: Vec<ReferenceSpec>,
+    pub figures: Option<FiguresSpec>,
+    pub stability: Option<StabilitySpec>,
+    #[serde(default)]
+    pub extreme: Vec<ExtremeSpec>,
+    pub work_precision: Option<WorkPrecisionSpec>,
+    pub performance: Option<PerformanceSpec>,
+}
+
+/// `[exact]`: the solution the errors are measured against.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExactSpec {
+    /// `rod_constant_data` (the family, data from the scene), `paper_4_6`, `paper_4_7`,
+    /// `rod_manufactured_switching`, `rod_manufactured_receding` (these bring their own data).
+    pub solution: String,
+}
+
+/// `[discretization]`: options of every run of the case (defaults: the scene's).
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiscretizationSpec {
+    pub mesh_grading: Option<f64>,
+    pub graded_towards: Option<GradingEnd>,
+    pub time_grading: Option<f64>,
+    pub post_process_velocity: Option<bool>,
+}
+
+/// `[[sweep]]`: a list of levels (M elements, N steps), each run with each scheme.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    pub name: String,
+    pub elements: Vec<usize>,
+    /// One entry per level, or a single entry used for every level.
+    pub steps: Vec<usize>,
+    #[serde(default)]
+    pub schemes: Vec<TimeScheme>,
+}
+
+impl SweepSpec {
+    /// The (M, N) levels.
+    pub fn levels(&self) -> Vec<(usize, usize)> {
+        let n = self.elements.len().max(self.steps.len());
+        (0..n)
+            .map(|i| {
+                let m = *self.elements.get(i).unwrap_or(&self.elements[0]);
+                let s = *self.steps.get(i).unwrap_or(&self.steps[0]);
+                (m, s)
+            })
+            .collect()
+    }
+}
+
+/// `[[gate]]`: a rate gate — fitted rate within tolerance, CI narrower than a width, finest error
+/// under a ceiling, pairwise rates of the finest levels consistent with the fit.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RateGateSpec {
+    pub sweep: String,
+    pub scheme: Option<TimeScheme>,
+    pub error: String,
+    pub against: Against,
+    pub expected_rate: f64,
+    pub tolerance: f64,
+    pub finest_levels: usize,
+    pub ci_width: f64,
+    pub ceiling: f64,
+    /// Pairwise rates of the finest pairs must lie within this of the fit (default: `tolerance`).
+    pub asymptotic_tolerance: Option<f64>,
+    #[serde(default)]
+    pub note: String,
+}
+
+/// `[[model_gate]]`: E(h, k) ≈ C_h h^p + C_k k^q fitted over all runs of the named sweeps.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelGateSpec {
+    pub sweeps: Vec<String>,
+    pub scheme: Option<TimeScheme>,
+    pub error: String,
+    pub expected_p: f64,
+    pub expected_q: f64,
+    pub tolerance: f64,
+    pub ci_width: f64,
+    /// `sum` (E = C_h h^p + C_k k^q) or `quadrature` (E² = (C_h h^p)² + (C_k k^q)², for errors
+    /// whose spatial and temporal parts are orthogonal).
+    #[serde(default)]
+    pub combination: crate::stats::error_model::Combination,
+    #[serde(default)]
+    pub note: String,
+}
+
+/// `[[reference]]`: a pinned value of one run.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceSpec {
+    pub name: String,
+    /// An error functional (`paper_E`, …) or `u_end` (the computed u_h(L, T)).
+    pub quantity: String,
+    pub elements: usize,
+    pub steps: usize,
+    #[serde(default)]
+    pub scheme: TimeScheme,
+    pub value: f64,
+    pub relative_tolerance: f64,
+}
+
+/// `[figures]`: the paper's figures (snapshots, node histories, contact stress) for one run.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FiguresSpec {
+    pub elements: usize,
+    pub steps: usize,
+    #[serde(default)]
+    pub scheme: TimeScheme,
+    pub snapshot_times: Vec<f64>,
+    pub probes: Vec<f64>,
+    /// Label of the paper figures reproduced, e.g. "Figs 2–4".
+    #[serde(default)]
+    pub paper_figures: String,
+}
+
+/// `[stability]`: runs across the explicit bound k = 2a/b.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct StabilitySpec {
+    /// Meshes (M) to run, showing the bound does not depend on h.
+    pub elements: Vec<usize>,
+    /// Steps per run (T = N k is set per run).
+    pub steps: usize,
+    /// k / (2a/b) for the explicit runs.
+    pub fractions: Vec<f64>,
+    /// k / (2a/b) for the implicit and midpoint runs (far beyond the explicit bound).
+    pub unconditional_fractions: Vec<f64>,
+    /// Largest |μ_observed − μ_predicted| of each mode's amplification factor.
+    pub mu_tolerance: f64,
+    /// The observed onset must be bracketed within this relative distance of the prediction.
+    pub onset_bracket: f64,
+}
+
+/// `[[extreme]]`: one run at the edge of the admissible data.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtremeSpec {
+    pub name: String,
+    /// Dotted scene keys and values overriding the case's scene (`"foundation.p0" = 5.000000001`).
+    #[serde(default)]
+    pub set: toml::Table,
+    pub elements: usize,
+    pub steps: usize,
+    #[serde(default)]
+    pub scheme: TimeScheme,
+    /// `solution` (must run and meet the checks below) or `non_finite_error` (must stop with a
+    /// non-finite error naming the step).
+    pub expect: String,
+    /// Ceiling of the paper error E against the constant-data exact solution.
+    pub paper_e_ceiling: Option<f64>,
+    /// Largest Newton iteration count allowed in one step.
+    pub max_newton_iterations: Option<usize>,
+    /// Compare a single step with its independent closed form to this relative tolerance.
+    pub one_step_tolerance: Option<f64>,
+    /// Also run (2M, 2N) and (4M, 4N): the pairwise rates of the paper error E must lie within
+    /// `refinement_tolerance` of this rate (the data still converge at the theory's order).
+    pub refinement_rate: Option<f64>,
+    pub refinement_tolerance: Option<f64>,
+    #[serde(default)]
+    pub note: String,
+}
+
+/// `[work_precision]`: error against cost for every scheme.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct WorkPrecisionSpec {
+    pub error: String,
+    /// Levels (M, N) along which every scheme is run.
+    pub elements: Vec<usize>,
+    pub steps: Vec<usize>,
+    pub schemes: Vec<TimeScheme>,
+    /// Timing repeats per run (the minimum is reported).
+    pub repeats: usize,
+    /// Gate: the `cheaper` scheme reaches the finest error of `baseline` with at most this
+    /// fraction of its work (counted in dof-steps, which is deterministic).
+    pub baseline: TimeScheme,
+    pub cheaper: TimeScheme,
+    pub max_work_ratio: f64,
+}
+
+/// `[performance]`: the time loop of one large run against a budget.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PerformanceSpec {
+    /// Sizes (M, N) timed; the last is the budgeted one.
+    pub elements: Vec<usize>,
+    pub steps: Vec<usize>,
+    pub repeats: usize,
+    pub budget_seconds: f64,
+    /// Largest allowed spread of the per-dof-step cost across sizes (max/min): linear growth.
+    pub max_cost_spread: f64,
+}
+
+/// A case read from disk.
+#[derive(Debug, Clone)]
+pub struct Case {
+    pub path: PathBuf,
+    pub file: CaseFile,
+}
+
+/// Why a case file is unusable.
+#[derive(Debug, thiserror::Error)]
+pub enum CaseError {
+    #[error("{path}: {message}")]
+    Read { path: String, message: String },
+    #[error("{path}: invalid {field} = {value}: expected {expected}")]
+    Invalid {
+        path: String,
+        field: String,
+        value: String,
+        expected: String,
+    },
+}
+
+fn invalid(path: &Path, field: &str, value: impl std::fmt::Display, expected: &str) -> CaseError {
+    CaseError::Invalid {
+        path: path.display().to_string(),
+        field: field.to_string(),
+        value: value.to_string(),
+        expected: expected.to_string(),
+    }
+}
+
+impl Case {
+    /// Reads and checks one case file.
+    pub fn load(path: &Path) -> Result<Self, CaseError> {
+        let text = std::fs::read_to_string(path).map_err(|e| CaseError::Read {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        let file: CaseFile = toml::from_str(&text).map_err(|e| CaseError::Read {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        let case = Self {
+            path: path.to_path_buf(),
+            file,
+        };
+        case.check()?;
+        Ok(case)
+    }
+
+    /// Reads every `*.toml` of a directory, sorted by file name.
+    pub fn load_all(dir: &Path) -> Result<Vec<Self>, CaseError> {
+        let entries = std::fs::read_dir(dir).map_err(|e| CaseError::Read {
+            path: dir.display().to_string(),
+            message: e.to_string(),
+        })?;
+        let mut paths: Vec<PathBuf> = entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+            .collect();
+        paths.sort();
+        let cases: Vec<Self> = paths
+            .iter()
+            .map(|p| Self::load(p))
+            .collect::<Result<_, _>>()?;
+        for (i, c) in cases.iter().enumerate() {
+            if cases[..i].iter().any(|d| d.file.id == c.file.id) {
+                return Err(invalid(
+                    &c.path,
+                    "id",
+                    &c.file.id,
+                    "an id no other case uses",
+                ));
+            }
+        }
+        Ok(cases)
+    }
+
+    fn check(&self) -> Result<(), CaseError> {
+        let f = &self.file;
+        let p = &self.path;
+        let error_names: Vec<&str> = ROD_ERRORS.to_vec();
+        for (i, s) in f.sweep.iter().enumerate() {
+            if s.elements.is_empty() || s.steps.is_empty() {
+                return Err(invalid(
+                    p,
+                    &format!("sweep[{i}]"),
+                    "(empty)",
+                    "non-empty elements and steps",
+                ));
+            }
+            if s.elements.len() != s.steps.len() && s.elements.len() != 1 && s.steps.len() != 1 {
+                return Err(invalid(
+                    p,
+                    &format!("sweep[{i}].steps"),
+                    format!("{} entries", s.steps.len()),
+                    "one entry per level, or a single entry",
+                ));
+            }
+        }
+        for (i, g) in f.gate.iter().enumerate() {
+            let field = format!("gate[{i}]");
+            if !f.sweep.iter().any(|s| s.name == g.sweep) {
+                return Err(invalid(
+                    p,
+                    &format!("{field}.sweep"),
+                    &g.sweep,
+                    "the name of a [[sweep]]",
+                ));
+            }
+            if !error_names.contains(&g.error.as_str()) {
+                return Err(invalid(
+                    p,
+                    &format!("{field}.error"),
+                    &g.error,
+                    "a rod error functional",
+                ));
+            }
+            if g.finest_levels < 2 {
+                return Err(invalid(
+                    p,
+                    &format!("{field}.finest_levels"),
+                    g.finest_levels,
+                    ">= 2",
+                ));
+            }
+            for (name, v) in [
+                ("tolerance", g.tolerance),
+                ("ci_width", g.ci_width),
+                ("ceiling", g.ceiling),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(invalid(
+                        p,
+                        &format!("{field}.{name}"),
+                        v,
+                        "a finite number > 0",
+                    ));
+                }
+            }
+        }
+        for (i, g) in f.model_gate.iter().enumerate() {
+            for s in &g.sweeps {
+                if !f.sweep.iter().any(|x| &x.name == s) {
+                    return Err(invalid(
+                        p,
+                        &format!("model_gate[{i}].sweeps"),
+                        s,
+                        "names of [[sweep]]s",
+                    ));
+                }
+            }
+            if !error_names.contains(&g.error.as_str()) {
+                return Err(invalid(
+                    p,
+                    &format!("model_gate[{i}].error"),
+                    &g.error,
+                    "a rod error functional",
+                ));
+            }
+        }
+        for (i, r) in f.reference.iter().enumerate() {
+            if r.quantity != "u_end" && !error_names.contains(&r.quantity.as_str()) {
+                return Err(invalid(
+                    p,
+                    &format!("reference[{i}].quantity"),
+                    &r.quantity,
+                    "u_end or a rod error functional",
+                ));
+            }
+        }
+        let needs = |what: bool, field: &str| -> Result<(), CaseError> {
+            if what {
+                Ok(())
+            } else {
+                Err(invalid(
+                    p,
+                    field,
+                    "(missing)",
+                    "a section for this kind of case",
+                ))
+            }
+        };
+        match f.kind {
+            CaseKind::Convergence => {
+                needs(!f.sweep.is_empty() || !f.reference.is_empty(), "sweep")?
+            }
+            CaseKind::Stability => needs(f.stability.is_some(), "stability")?,
+            CaseKind::Extremes => needs(!f.extreme.is_empty(), "extreme")?,
+            CaseKind::WorkPrecision => needs(f.work_precision.is_some(), "work_precision")?,
+            CaseKind::Performance => needs(f.performance.is_some(), "performance")?,
+        }
+        if f.scene.is_none() && f.exact.is_none() {
+            return Err(invalid(
+                p,
+                "scene",
+                "(missing)",
+                "a [scene] or an [exact] manufactured solution",
+            ));
+        }
+        Ok(())
+    }
+}

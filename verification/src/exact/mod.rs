@@ -1,0 +1,37 @@
+//! Closed-form solutions, each citing its source and equation.
+//!
+//! - `rod_constant_data`: the family of exact solutions of problem T1D with constant data
+//!   (derived here; the paper's two, (4.6) and (4.7), are members).
+//! - `rod_paper`: the paper's (4.6) and (4.7) written out literally, to check the family against.
+
+pub mod rod_constant_data;
+pub mod rod_paper;
+
+/// u and the derivatives the rod's equations and error norms need, at one (x, t).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RodJet {
+    pub u: f64,
+    pub u_x: f64,
+    pub u_t: f64,
+    pub u_xt: f64,
+    pub u_xx: f64,
+    pub u_xxt: f64,
+}
+
+/// A solution of the rod problem, known in closed form (or manufactured).
+pub trait RodExactSolution: Send + Sync {
+    /// A short name.
+    fn name(&self) -> &str;
+    /// Where it comes from (paper and equation, or "manufactured").
+    fn source(&self) -> &str;
+    /// u and its derivatives at (x, t).
+    fn jet(&self, x: f64, t: f64) -> RodJet;
+
+    /// The jets at many points at one time, into `out` (solutions whose time dependence is
+    /// separable override this to evaluate the time factors once).
+    fn jets_at_time(&self, xs: &[f64], t: f64, out: &mut [RodJet]) {
+        for (o, &x) in out.iter_mut().zip(xs) {
+            *o = self.jet(x, t);
+        }
+    }
+}

@@ -1,0 +1,161 @@
+//! The per-case report, serialized as `reports/<case id>.json`.
+
+use serde::Serialize;
+
+use contactlab::model::quasistatic::scheme::TimeScheme;
+
+use crate::case::{CaseKind, Tier};
+use crate::gate::{Check, GateVerdict};
+use crate::report::metadata::Metadata;
+use crate::rod_study::LevelResult;
+
+/// A plot written for a case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlotRef {
+    pub title: String,
+    /// Path relative to the reports directory.
+    pub file: String,
+}
+
+/// The runs of one sweep with one scheme.
+#[derive(Debug, Clone, Serialize)]
+pub struct SweepReport {
+    pub name: String,
+    pub scheme: TimeScheme,
+    /// Levels in the order of the case file.
+    pub levels: Vec<LevelResult>,
+}
+
+/// One run of a stability case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StabilityRun {
+    pub scheme: TimeScheme,
+    pub elements: usize,
+    /// k / (2a/b).
+    pub fraction: f64,
+    pub k: f64,
+    /// μ1 = 1 − k b/α on the modes vanishing at x = L: predicted and observed.
+    pub mu_interior_predicted: f64,
+    pub mu_interior_observed: f64,
+    /// μ2 = 1 − k b/(α + β L) on the contact mode: predicted and observed.
+    pub mu_contact_predicted: f64,
+    pub mu_contact_observed: f64,
+    /// The predicted spectral radius max(|μ1|, |μ2|).
+    pub rho_predicted: f64,
+    /// (‖d_N‖/‖d_1‖)^{1/(N−1)}: the observed mean growth of the increments over the run.
+    pub mean_growth: f64,
+}
+
+/// The stability case's data.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StabilityReport {
+    /// 2a/b.
+    pub predicted_bound: f64,
+    /// Largest explicit fraction observed stable and smallest observed unstable.
+    pub observed_onset: (f64, f64),
+    pub runs: Vec<StabilityRun>,
+}
+
+/// One run of an extremes case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExtremeReport {
+    pub name: String,
+    pub expect: String,
+    /// What happened: `solution` or the error message.
+    pub outcome: String,
+    pub checks: Vec<Check>,
+    pub note: String,
+}
+
+/// One point of a work–precision study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorkPoint {
+    pub scheme: TimeScheme,
+    pub elements: usize,
+    pub steps: usize,
+    pub error: f64,
+    /// Minimum over the repeats of the solver's wall time, without error evaluation (s).
+    pub cpu_seconds: f64,
+    /// M·N: the deterministic measure of work.
+    pub dof_steps: f64,
+}
+
+/// The work–precision data.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorkPrecisionReport {
+    pub error: String,
+    pub points: Vec<WorkPoint>,
+}
+
+/// One timed size of a performance case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PerformancePoint {
+    pub elements: usize,
+    pub steps: usize,
+    pub dof_steps: f64,
+    /// Minimum over the repeats of the whole time loop (s).
+    pub seconds: f64,
+    /// seconds / dof_steps (ns).
+    pub ns_per_dof_step: f64,
+}
+
+/// The performance data.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PerformanceReport {
+    pub points: Vec<PerformancePoint>,
+    pub budget_seconds: f64,
+}
+
+/// Everything a case produced.
+#[derive(Debug, Clone, Serialize)]
+pub struct CaseReport {
+    pub id: String,
+    pub title: String,
+    pub kind: CaseKind,
+    pub tier: Tier,
+    pub explanation: String,
+    /// True when every gate passed and nothing failed to run.
+    pub passed: bool,
+    /// A failure to set up or run the case (then `passed` is false).
+    pub failure: Option<String>,
+    pub gates: Vec<GateVerdict>,
+    pub sweeps: Vec<SweepReport>,
+    pub stability: Option<StabilityReport>,
+    pub extremes: Vec<ExtremeReport>,
+    pub work_precision: Option<WorkPrecisionReport>,
+    pub performance: Option<PerformanceReport>,
+    pub plots: Vec<PlotRef>,
+    /// Wall time of the whole case (s).
+    pub wall_seconds: f64,
+    pub metadata: Metadata,
+}
+
+impl CaseReport {
+    /// An empty report for a case, to be filled by its runner.
+    pub fn new(case: &crate::case::CaseFile, metadata: Metadata) -> Self {
+        Self {
+            id: case.id.clone(),
+            title: case.title.clone(),
+            kind: case.kind,
+            tier: case.tier,
+            explanation: case.explanation.trim().to_string(),
+            passed: false,
+            failure: None,
+            gates: Vec::new(),
+            sweeps: Vec::new(),
+            stability: None,
+            extremes: Vec::new(),
+            work_precision: None,
+            performance: None,
+            plots: Vec::new(),
+            wall_seconds: 0.0,
+            metadata,
+        }
+    }
+
+    /// Sets `passed` from the gates and the failure.
+    pub fn conclude(&mut self) {
+        self.passed =
+            self.failure.is_none() && !self.gates.is_empty() && self.gates.iter().all(|g| g.passed);
+    }
+}

@@ -1,0 +1,138 @@
+//! Runners: one per case kind. Each fills a [`CaseReport`]; a failure to set up or run becomes the
+//! report's `failure` (and fails the case), never a panic.
+
+pub mod convergence;
+pub mod extremes;
+pub mod paper_figures;
+pub mod performance;
+pub mod stability;
+pub mod work_precision;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::case::{Case, CaseKind};
+use crate::report::case_report::{CaseReport, PlotRef};
+use crate::report::metadata::Metadata;
+
+/// Where and how cases run.
+#[derive(Debug, Clone)]
+pub struct RunContext {
+    /// The reports directory (plots go to `<out>/<case id>/`).
+    pub out_dir: PathBuf,
+    pub metadata: Metadata,
+    /// Show progress bars (on a terminal).
+    pub progress: bool,
+}
+
+impl RunContext {
+    /// The directory of a case's plots, created on demand.
+    pub fn case_dir(&self, id: &str) -> Result<PathBuf, String> {
+        let dir = self.out_dir.join(id);
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        Ok(dir)
+    }
+
+    /// A progress bar of `total` runs (hidden when not wanted).
+    pub fn progress_bar(&self, total: u64, label: &str) -> ProgressBar {
+        if !self.progress || total < 4 {
+            return ProgressBar::hidden();
+        }
+        let bar = ProgressBar::new(total);
+        if let Ok(style) =
+            ProgressStyle::with_template("{prefix:>28} [{bar:30}] {pos}/{len} runs {elapsed}")
+        {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_prefix(label.to_string());
+        bar
+    }
+
+    /// Writes `figure` as `<case dir>/<name>.svg` and records it in the report.
+    pub fn plot(
+        &self,
+        report: &mut CaseReport,
+        name: &str,
+        figure: &crate::plot::Figure,
+    ) -> Result<(), String> {
+        let dir = self.case_dir(&report.id)?;
+        let path = dir.join(format!("{name}.svg"));
+        crate::plot::write_svg(figure, &path).map_err(|e| e.to_string())?;
+        report.plots.push(PlotRef {
+            title: figure.title.clone(),
+            file: relative(&self.out_dir, &path),
+        });
+        Ok(())
+    }
+
+    /// Writes several figures side by side as one SVG and records it.
+    pub fn panels(
+        &self,
+        report: &mut CaseReport,
+        name: &str,
+        title: &str,
+        figures: &[crate::plot::Figure],
+        columns: usize,
+    ) -> Result<(), String> {
+        let dir = self.case_dir(&report.id)?;
+        let path = dir.join(format!("{name}.svg"));
+        crate::plot::write_panels_svg(figures, columns, &path).map_err(|e| e.to_string())?;
+        report.plots.push(PlotRef {
+            title: title.to_string(),
+            file: relative(&self.out_dir, &path),
+        });
+        Ok(())
+    }
+}
+
+fn relative(base: &Path, path: &Path) -> String {
+    path.strip_prefix(base)
+        .unwrap_or(path)
+        .to_string_lossy()
+        .replace('\\', "/")
+}
+
+/// The minimum over `repeats` runs of a solver's whole time loop (s), with an observer that only
+/// reads the contact velocity (so the loop cannot be optimized away).
+pub fn time_loop_seconds(
+    solver: &contactlab::model::quasistatic::rod_solver::RodSolver,
+    repeats: usize,
+) -> Result<f64, String> {
+    let mut best = f64::INFINITY;
+    for _ in 0..repeats.max(1) {
+        let mut sink = 0.0;
+        let start = Instant::now();
+        solver
+            .run(
+                &mut |s: &contactlab::model::quasistatic::rod_solver::RodStep<'_>| {
+                    sink += s.contact_velocity
+                },
+            )
+            .map_err(|e| e.to_string())?;
+        best = best.min(start.elapsed().as_secs_f64());
+        std::hint::black_box(sink);
+    }
+    Ok(best)
+}
+
+/// Runs one case and returns its report.
+pub fn run_case(case: &Case, ctx: &RunContext) -> CaseReport {
+    let start = Instant::now();
+    let mut report = CaseReport::new(&case.file, ctx.metadata.clone());
+    let outcome = match case.file.kind {
+        CaseKind::Convergence => convergence::run(&case.file, ctx, &mut report),
+        CaseKind::Stability => stability::run(&case.file, ctx, &mut report),
+        CaseKind::Extremes => extremes::run(&case.file, ctx, &mut report),
+        CaseKind::WorkPrecision => work_precision::run(&case.file, ctx, &mut report),
+        CaseKind::Performance => performance::run(&case.file, ctx, &mut report),
+    };
+    if let Err(message) = outcome {
+        report.failure = Some(message);
+    }
+    report.wall_seconds = start.elapsed().as_secs_f64();
+    report.conclude();
+    report
+}

@@ -1,0 +1,100 @@
+//! Gates end to end: the paper's p0 = 6 rod with its true expected rate passes; the same case with
+//! a deliberately wrong expected rate, or a ceiling below the observed error, fails — and a failing
+//! case makes the report say so. Sweeps run on 1 and 2 threads give bit-identical errors.
+
+use contactlab_verify::case::{Case, CaseFile};
+use contactlab_verify::report::metadata::Metadata;
+use contactlab_verify::run::{run_case, RunContext};
+
+const CASE: &str = r#"
+id = "e2e"
+title = "end to end"
+kind = "convergence"
+explanation = "test"
+[scene]
+model = "rod"
+[scene.rod]
+length = 1.0
+final_time = 0.5
+viscosity = 1.0
+elasticity = 1.0
+load = 10.0
+[scene.foundation]
+law = "lubricated"
+beta = 1.0
+p0 = 6.0
+[exact]
+solution = "rod_constant_data"
+[[sweep]]
+name = "diagonal"
+elements = [20, 40, 80, 160]
+steps = [10, 20, 40, 80]
+[[gate]]
+sweep = "diagonal"
+error = "paper_E"
+against = "h_plus_k"
+expected_rate = EXPECTED
+tolerance = 0.05
+finest_levels = 3
+ci_width = 0.05
+ceiling = CEILING
+"#;
+
+fn case(expected: f64, ceiling: f64) -> Case {
+    let text = CASE
+        .replace("EXPECTED", &expected.to_string())
+        .replace("CEILING", &format!("{ceiling:e}"));
+    let file: CaseFile = toml::from_str(&text).unwrap();
+    Case {
+        path: "e2e.toml".into(),
+        file,
+    }
+}
+
+fn ctx(tag: &str) -> RunContext {
+    RunContext {
+        out_dir: std::env::temp_dir().join(format!("contactlab-e2e-{tag}-{}", std::process::id())),
+        metadata: Metadata::collect("test"),
+        progress: false,
+    }
+}
+
+#[test]
+fn true_expected_rate_passes() {
+    let r = run_case(&case(1.0, 1e-1), &ctx("pass"));
+    assert!(r.passed, "{:?}", r.gates);
+}
+
+#[test]
+fn deliberately_wrong_expected_rate_fails() {
+    let r = run_case(&case(2.0, 1e-1), &ctx("rate"));
+    assert!(!r.passed);
+    assert!(!r.gates[0].checks[0].passed);
+}
+
+#[test]
+fn ceiling_below_the_finest_error_fails() {
+    let r = run_case(&case(1.0, 1e-4), &ctx("ceiling"));
+    assert!(!r.passed);
+}
+
+#[test]
+fn sweeps_are_bit_identical_on_one_and_two_threads() {
+    let c = case(1.0, 1e-1);
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let two = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let a = one.install(|| run_case(&c, &ctx("t1")));
+    let b = two.install(|| run_case(&c, &ctx("t2")));
+    for (la, lb) in a.sweeps[0].levels.iter().zip(&b.sweeps[0].levels) {
+        for (k, v) in &la.errors {
+            assert_eq!(v.to_bits(), lb.errors[k].to_bits(), "{k}");
+        }
+        assert_eq!(la.u_end.to_bits(), lb.u_end.to_bits());
+    }
+}
