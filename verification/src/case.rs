@@ -58,7 +58,22 @@ impl Against {
     }
 }
 
-/// A case file.
+/// The keys every case file has, whatever its kind; the rest of the file belongs to the kind (each
+/// family of kinds parses the whole file into its own format, with unknown keys as errors).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+pub struct CaseHeader {
+    pub id: String,
+    pub title: String,
+    /// The case kind; it selects the runner (see `run::run_case`).
+    pub kind: String,
+    #[serde(default)]
+    pub tier: Tier,
+    /// Why the gates expect what they expect.
+    pub explanation: String,
+}
+
+/// The case format of the quasistatic models (kinds `convergence`, `stability`, `extremes`,
+/// `work_precision`, `performance`).
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CaseFile {
@@ -282,11 +297,12 @@ pub struct PerformanceSpec {
     pub max_cost_spread: f64,
 }
 
-/// A case read from disk.
+/// A case read from disk: its header and the whole file as a table for its kind's runner.
 #[derive(Debug, Clone)]
 pub struct Case {
     pub path: PathBuf,
-    pub file: CaseFile,
+    pub header: CaseHeader,
+    pub table: toml::Table,
 }
 
 /// Why a case file is unusable.
@@ -313,21 +329,35 @@ fn invalid(path: &Path, field: &str, value: impl std::fmt::Display, expected: &s
 }
 
 impl Case {
-    /// Reads and checks one case file.
+    /// Reads one case file and checks it with its kind's format.
     pub fn load(path: &Path) -> Result<Self, CaseError> {
-        let text = std::fs::read_to_string(path).map_err(|e| CaseError::Read {
+        let read_error = |message: String| CaseError::Read {
             path: path.display().to_string(),
-            message: e.to_string(),
-        })?;
-        let file: CaseFile = toml::from_str(&text).map_err(|e| CaseError::Read {
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| read_error(e.to_string()))?;
+        Self::from_text(path, &text)
+    }
+
+    /// A case from TOML text (`path` labels errors).
+    pub fn from_text(path: &Path, text: &str) -> Result<Self, CaseError> {
+        let read_error = |message: String| CaseError::Read {
             path: path.display().to_string(),
-            message: e.to_string(),
-        })?;
+            message,
+        };
+        let table: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| read_error(e.to_string()))?;
+        let header: CaseHeader = table
+            .clone()
+            .try_into()
+            .map_err(|e: toml::de::Error| read_error(e.to_string()))?;
         let case = Self {
             path: path.to_path_buf(),
-            file,
+            header,
+            table,
         };
-        case.check()?;
+        crate::run::check_case(&case)?;
         Ok(case)
     }
 
@@ -347,21 +377,36 @@ impl Case {
             .map(|p| Self::load(p))
             .collect::<Result<_, _>>()?;
         for (i, c) in cases.iter().enumerate() {
-            if cases[..i].iter().any(|d| d.file.id == c.file.id) {
+            if cases[..i].iter().any(|d| d.header.id == c.header.id) {
                 return Err(invalid(
                     &c.path,
                     "id",
-                    &c.file.id,
+                    &c.header.id,
                     "an id no other case uses",
                 ));
             }
         }
         Ok(cases)
     }
+}
 
-    fn check(&self) -> Result<(), CaseError> {
-        let f = &self.file;
-        let p = &self.path;
+impl CaseFile {
+    /// The quasistatic case format of a case, checked.
+    pub fn from_case(case: &Case) -> Result<Self, CaseError> {
+        let file: CaseFile = case
+            .table
+            .clone()
+            .try_into()
+            .map_err(|e: toml::de::Error| CaseError::Read {
+                path: case.path.display().to_string(),
+                message: e.to_string(),
+            })?;
+        file.check(&case.path)?;
+        Ok(file)
+    }
+
+    fn check(&self, p: &Path) -> Result<(), CaseError> {
+        let f = self;
         let error_names: Vec<&str> = ROD_ERRORS.to_vec();
         for (i, s) in f.sweep.iter().enumerate() {
             if s.elements.is_empty() || s.steps.is_empty() {

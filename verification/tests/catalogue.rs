@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use contactlab_verify::case::{Case, CaseKind, Tier};
+use contactlab_verify::case::{Case, CaseFile, CaseKind, Tier};
 
 fn cases() -> Vec<Case> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases");
@@ -15,7 +15,8 @@ fn every_case_parses_with_an_explanation_and_gates() {
     let cases = cases();
     assert!(cases.len() >= 9);
     for c in &cases {
-        let f = &c.file;
+        let f = CaseFile::from_case(c).expect("quasistatic case format");
+        let f = &f;
         assert!(
             f.explanation.trim().len() > 80,
             "{}: explain the expected numbers",
@@ -42,8 +43,8 @@ fn quick_tier_holds_the_rod_convergence_cases() {
     let cases = cases();
     let quick: Vec<&str> = cases
         .iter()
-        .filter(|c| c.file.tier == Tier::Quick)
-        .map(|c| c.file.id.as_str())
+        .filter(|c| c.header.tier == Tier::Quick)
+        .map(|c| c.header.id.as_str())
         .collect();
     for id in [
         "rod_p0_6_explicit",

@@ -2,7 +2,7 @@
 //! a deliberately wrong expected rate, or a ceiling below the observed error, fails — and a failing
 //! case makes the report say so. Sweeps run on 1 and 2 threads give bit-identical errors.
 
-use contactlab_verify::case::{Case, CaseFile};
+use contactlab_verify::case::Case;
 use contactlab_verify::report::metadata::Metadata;
 use contactlab_verify::run::{run_case, RunContext};
 
@@ -44,11 +44,7 @@ fn case(expected: f64, ceiling: f64) -> Case {
     let text = CASE
         .replace("EXPECTED", &expected.to_string())
         .replace("CEILING", &format!("{ceiling:e}"));
-    let file: CaseFile = toml::from_str(&text).unwrap();
-    Case {
-        path: "e2e.toml".into(),
-        file,
-    }
+    Case::from_text(std::path::Path::new("e2e.toml"), &text).unwrap()
 }
 
 fn ctx(tag: &str) -> RunContext {

@@ -106,16 +106,16 @@ fn main() -> ExitCode {
         for c in &cases {
             println!(
                 "{:<36} {:<14} {:<8} {}",
-                c.file.id,
-                format!("{:?}", c.file.kind),
-                format!("{:?}", c.file.tier).to_lowercase(),
-                c.file.title
+                c.header.id,
+                c.header.kind,
+                format!("{:?}", c.header.tier).to_lowercase(),
+                c.header.title
             );
         }
         return ExitCode::SUCCESS;
     }
     for id in &cli.cases {
-        if !cases.iter().any(|c| &c.file.id == id) {
+        if !cases.iter().any(|c| &c.header.id == id) {
             eprintln!("error: no case `{id}` (see `verify --list`)");
             return ExitCode::from(2);
         }
@@ -124,9 +124,9 @@ fn main() -> ExitCode {
         .iter()
         .filter(|c| {
             if !cli.cases.is_empty() {
-                cli.cases.contains(&c.file.id)
+                cli.cases.contains(&c.header.id)
             } else if cli.quick {
-                c.file.tier == Tier::Quick
+                c.header.tier == Tier::Quick
             } else {
                 true
             }

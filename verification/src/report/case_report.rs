@@ -4,7 +4,7 @@ use serde::Serialize;
 
 use contactlab::model::quasistatic::scheme::TimeScheme;
 
-use crate::case::{CaseKind, Tier};
+use crate::case::Tier;
 use crate::gate::{Check, GateVerdict};
 use crate::report::metadata::Metadata;
 use crate::rod_study::LevelResult;
@@ -111,7 +111,7 @@ pub struct PerformanceReport {
 pub struct CaseReport {
     pub id: String,
     pub title: String,
-    pub kind: CaseKind,
+    pub kind: String,
     pub tier: Tier,
     pub explanation: String,
     /// True when every gate passed and nothing failed to run.
@@ -132,11 +132,11 @@ pub struct CaseReport {
 
 impl CaseReport {
     /// An empty report for a case, to be filled by its runner.
-    pub fn new(case: &crate::case::CaseFile, metadata: Metadata) -> Self {
+    pub fn new(case: &crate::case::CaseHeader, metadata: Metadata) -> Self {
         Self {
             id: case.id.clone(),
             title: case.title.clone(),
-            kind: case.kind,
+            kind: case.kind.clone(),
             tier: case.tier,
             explanation: case.explanation.trim().to_string(),
             passed: false,

@@ -99,7 +99,7 @@ pub fn render(reports: &[CaseReport], metadata: &Metadata, total_seconds: f64) -
     for r in reports {
         let _ = writeln!(
             s,
-            "| [{}](#{}) | {:?} | {} | {} | {:.2} |",
+            "| [{}](#{}) | {} | {} | {} | {:.2} |",
             r.id,
             r.id,
             r.kind,

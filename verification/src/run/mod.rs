@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::case::{Case, CaseKind};
+use crate::case::{Case, CaseError, CaseFile, CaseKind};
 use crate::report::case_report::{CaseReport, PlotRef};
 use crate::report::metadata::Metadata;
 
@@ -118,16 +118,43 @@ pub fn time_loop_seconds(
     Ok(best)
 }
 
+/// The kinds of the quasistatic case format ([`CaseFile`]).
+const QUASISTATIC_KINDS: [&str; 5] = [
+    "convergence",
+    "stability",
+    "extremes",
+    "work_precision",
+    "performance",
+];
+
+/// Checks a case with its kind's format (called when a case is loaded).
+pub fn check_case(case: &Case) -> Result<(), CaseError> {
+    let kind = case.header.kind.as_str();
+    if QUASISTATIC_KINDS.contains(&kind) {
+        CaseFile::from_case(case).map(|_| ())
+    } else {
+        Err(CaseError::Invalid {
+            path: case.path.display().to_string(),
+            field: "kind".into(),
+            value: kind.into(),
+            expected: format!("one of {}", QUASISTATIC_KINDS.join(", ")),
+        })
+    }
+}
+
 /// Runs one case and returns its report.
 pub fn run_case(case: &Case, ctx: &RunContext) -> CaseReport {
     let start = Instant::now();
-    let mut report = CaseReport::new(&case.file, ctx.metadata.clone());
-    let outcome = match case.file.kind {
-        CaseKind::Convergence => convergence::run(&case.file, ctx, &mut report),
-        CaseKind::Stability => stability::run(&case.file, ctx, &mut report),
-        CaseKind::Extremes => extremes::run(&case.file, ctx, &mut report),
-        CaseKind::WorkPrecision => work_precision::run(&case.file, ctx, &mut report),
-        CaseKind::Performance => performance::run(&case.file, ctx, &mut report),
+    let mut report = CaseReport::new(&case.header, ctx.metadata.clone());
+    let outcome = match CaseFile::from_case(case) {
+        Err(e) => Err(e.to_string()),
+        Ok(file) => match file.kind {
+            CaseKind::Convergence => convergence::run(&file, ctx, &mut report),
+            CaseKind::Stability => stability::run(&file, ctx, &mut report),
+            CaseKind::Extremes => extremes::run(&file, ctx, &mut report),
+            CaseKind::WorkPrecision => work_precision::run(&file, ctx, &mut report),
+            CaseKind::Performance => performance::run(&file, ctx, &mut report),
+        },
     };
     if let Err(message) = outcome {
         report.failure = Some(message);
