@@ -116,6 +116,14 @@ pub enum SolveError {
         /// Why it probably happened (e.g. an explicit step above its stability bound), or empty.
         hint: String,
     },
+    /// The step problem has no solution (or none that is unique): e.g. a body held only by its
+    /// contact under a load the contact forces cannot balance.
+    #[error("step {step} (t = {time}): the step problem has no solution: {reason}")]
+    NoEquilibrium {
+        step: usize,
+        time: f64,
+        reason: String,
+    },
     /// A factorization met a zero, negative or non-finite pivot.
     #[error("singular or indefinite {operator}: pivot {pivot:e} at row {row}")]
     Singular {

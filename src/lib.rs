@@ -15,11 +15,20 @@
 //!   u_n = u_{n−1} + k_n w_n, with θ = 0 (the paper's explicit scheme), 1 (implicit) or 1/2
 //!   (midpoint). The 1D rod ([`model::quasistatic::rod_solver`]) factors its stiffness once and
 //!   condenses the contact onto the end node: a step is one scalar semismooth Newton solve and one
-//!   pass over the nodal values.
+//!   pass over the nodal values. Plane bodies ([`model::quasistatic::plane_solver`]) factor
+//!   A + θkB once with the Γ3 dofs last and condense the contact onto them (linear A, B), or run a
+//!   full semismooth Newton method (nonlinear A or B); a body whose only vertical support is the
+//!   contact is handled with its free rigid motion, and a step without equilibrium is a typed
+//!   error.
+//! - [`material`]: plane Kelvin–Voigt laws (linear isotropic, saturating viscosity, softening
+//!   elasticity) with their tangents.
 //! - [`contact::normal_law`]: the laws p_ν (2.7)–(2.9) with generalized derivatives.
-//! - [`mesh`], [`time`], [`fem`]: interval meshes, time grids, quadrature, P1 assembly, norms.
-//! - [`solve`]: the tridiagonal LDLᵀ factorization and the safeguarded scalar semismooth Newton.
-//! - [`scene`]: TOML scenes validated into runnable models ([`scene::rod::RodScene`]).
+//! - [`mesh`], [`time`], [`fem`]: interval and triangle meshes, time grids, quadrature, P1
+//!   elements, symmetric sparse assembly, norms.
+//! - [`solve`]: the tridiagonal LDLᵀ, the sparse Cholesky (faer) with split passes, the
+//!   safeguarded scalar semismooth Newton.
+//! - [`scene`]: TOML scenes validated into runnable models ([`scene::rod::RodScene`],
+//!   [`scene::plane::PlaneScene`]).
 //! - [`error`]: typed errors naming fields, values, steps, times and residuals.
 //!
 //! ## Example
@@ -45,10 +54,15 @@
 //! # Ok::<(), contactlab::error::Error>(())
 //! ```
 
+// Numerical kernels index several arrays in lockstep (u_i, w_i, g_i, z_i; rows and columns):
+// index loops read as the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
 pub mod contact;
 pub mod error;
 pub mod fem;
 pub mod field;
+pub mod material;
 pub mod mesh;
 pub mod model;
 pub mod scene;

@@ -37,6 +37,17 @@ pub trait NormalLaw: Send + Sync + fmt::Debug {
     fn is_affine(&self) -> bool;
     /// Checks the data (β ≥ 0, finite constants).
     fn validate(&self) -> Result<(), InputError>;
+    /// A primitive Ψ of the law (Ψ′ = p_ν), if known: then the contact term is the gradient of
+    /// Σ W Ψ(r) and a Newton method can globalize on the energy instead of the residual norm.
+    fn potential(&self, _r: f64, _at: SpaceTime) -> Option<f64> {
+        None
+    }
+    /// The range (inf, sup) of r ↦ p_ν(r) at `at` (±∞ when unbounded). A body whose only support
+    /// in some direction is the contact has an equilibrium only if the load lies in the range of the
+    /// contact forces, which this bounds.
+    fn range(&self, _at: SpaceTime) -> (f64, f64) {
+        (f64::NEG_INFINITY, f64::INFINITY)
+    }
     /// The law as one of the paper's laws (2.7)–(2.9), if it is one (lets a caller recognise the
     /// standard laws, e.g. to pick an exact solution).
     fn as_foundation_law(&self) -> Option<&FoundationLaw> {
@@ -134,6 +145,32 @@ impl NormalLaw for FoundationLaw {
     fn as_foundation_law(&self) -> Option<&FoundationLaw> {
         Some(self)
     }
+
+    fn potential(&self, r: f64, at: SpaceTime) -> Option<f64> {
+        Some(match self {
+            FoundationLaw::Linear { beta } => 0.5 * beta * r * r,
+            FoundationLaw::Lubricated { beta, .. } => {
+                let rp = r.max(0.0);
+                0.5 * beta * rp * rp + self.source(at) * r
+            }
+            FoundationLaw::Prescribed { .. } => self.source(at) * r,
+        })
+    }
+
+    fn range(&self, at: SpaceTime) -> (f64, f64) {
+        match self {
+            FoundationLaw::Linear { beta } if *beta > 0.0 => (f64::NEG_INFINITY, f64::INFINITY),
+            FoundationLaw::Linear { .. } => (0.0, 0.0),
+            FoundationLaw::Lubricated { beta, .. } => {
+                let p0 = self.source(at);
+                (p0, if *beta > 0.0 { f64::INFINITY } else { p0 })
+            }
+            FoundationLaw::Prescribed { .. } => {
+                let s = self.source(at);
+                (s, s)
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -178,6 +215,19 @@ mod tests {
                     "{law:?} at r = {r}: fd {fd} vs {}",
                     law.derivative(r, AT)
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn potential_is_a_primitive_of_the_law() {
+        for law in laws() {
+            for &r in &[-1.5, -0.2, 0.3, 2.0] {
+                let eps = 1e-6;
+                let fd = (law.potential(r + eps, AT).unwrap()
+                    - law.potential(r - eps, AT).unwrap())
+                    / (2.0 * eps);
+                assert!((fd - law.value(r, AT)).abs() < 1e-7, "{law:?} at {r}");
             }
         }
     }

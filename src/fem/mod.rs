@@ -3,3 +3,6 @@
 pub mod norms;
 pub mod p1_interval;
 pub mod quadrature;
+pub mod sparse;
+pub mod triangle_p1;
+pub mod triangle_quadrature;

@@ -6,6 +6,8 @@
 //! with an error that names its field.
 
 pub mod field_spec;
+pub mod foundation;
+pub mod plane;
 pub mod rod;
 
 use crate::error::Error;

@@ -240,56 +240,13 @@ impl RodScene {
 }
 
 fn foundation_law(f: &FoundationSection) -> Result<FoundationLaw, Error> {
-    let law = match f.law.as_str() {
-        "linear" => {
-            reject("foundation.p0", f.p0.is_some(), "linear")?;
-            reject("foundation.stress", f.stress.is_some(), "linear")?;
-            FoundationLaw::Linear {
-                beta: required("foundation.beta", f.beta)?,
-            }
-        }
-        "lubricated" => {
-            reject("foundation.stress", f.stress.is_some(), "lubricated")?;
-            FoundationLaw::Lubricated {
-                beta: required("foundation.beta", f.beta)?,
-                p0: required("foundation.p0", f.p0.clone())?.to_field("foundation.p0")?,
-            }
-        }
-        "prescribed" => {
-            reject("foundation.beta", f.beta.is_some(), "prescribed")?;
-            reject("foundation.p0", f.p0.is_some(), "prescribed")?;
-            FoundationLaw::Prescribed {
-                stress: required("foundation.stress", f.stress.clone())?
-                    .to_field("foundation.stress")?,
-            }
-        }
-        other => {
-            return Err(InputError::new(
-                "foundation.law",
-                format!("\"{other}\""),
-                "\"linear\" (2.7), \"lubricated\" (2.8) or \"prescribed\" (2.9)",
-            )
-            .into())
-        }
-    };
-    crate::contact::normal_law::NormalLaw::validate(&law)?;
-    Ok(law)
-}
-
-fn required<T>(field: &str, value: Option<T>) -> Result<T, InputError> {
-    value.ok_or_else(|| InputError::new(field, "(missing)", "a value for this law"))
-}
-
-fn reject(field: &str, present: bool, law: &str) -> Result<(), InputError> {
-    if present {
-        Err(InputError::new(
-            field,
-            "(given)",
-            format!("no such key for law = \"{law}\""),
-        ))
-    } else {
-        Ok(())
-    }
+    Ok(crate::scene::foundation::foundation_law(
+        "foundation",
+        &f.law,
+        f.beta,
+        f.p0.as_ref(),
+        f.stress.as_ref(),
+    )?)
 }
 
 fn mesh(m: &MeshSection, length: f64) -> Result<IntervalMesh, InputError> {

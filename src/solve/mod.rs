@@ -5,4 +5,5 @@
 //!   equation condensed onto one node), safeguarded by bracketing.
 
 pub mod scalar_semismooth;
+pub mod sparse_cholesky;
 pub mod tridiagonal;

@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 use contactlab::mesh::interval::GradingEnd;
 use contactlab::model::quasistatic::scheme::TimeScheme;
 
+use crate::plane_errors::PLANE_ERRORS;
 use crate::rod_errors::ROD_ERRORS;
 
 /// What a case does.
@@ -27,6 +28,14 @@ pub enum CaseKind {
     WorkPrecision,
     /// Timing of the physical-limit run, with a budget.
     Performance,
+    /// The paper's Test 2D, both readings of Γ1.
+    PaperTest2d,
+    /// The 2D explicit step bound.
+    PlaneStability,
+    /// Condensed and Newton paths: agreement and error against cost.
+    PlanePaths,
+    /// The 2D time loop against its budget.
+    PlanePerformance,
 }
 
 /// Which runs include the case: `quick` cases run in `--quick` (CI) and in the default tier.
@@ -103,6 +112,74 @@ pub struct CaseFile {
     pub extreme: Vec<ExtremeSpec>,
     pub work_precision: Option<WorkPrecisionSpec>,
     pub performance: Option<PerformanceSpec>,
+    pub paper_test: Option<PaperTestSpec>,
+    pub plane_stability: Option<PlaneStabilitySpec>,
+    pub plane_paths: Option<PlanePathsSpec>,
+    pub plane_performance: Option<PlanePerformanceSpec>,
+}
+
+/// `[paper_test]`: the paper's Test 2D (Fernández & Sofonea 2004, §4.2) under both readings of
+/// Γ1, compared with its Figs 11–15.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PaperTestSpec {
+    /// Squares per side of the meshes compared.
+    pub meshes: Vec<usize>,
+    /// The mesh of the figures.
+    pub figure_mesh: usize,
+    pub betas: Vec<f64>,
+    /// The β of the von Mises comparison (the paper's Fig 14: β = 1000).
+    pub von_mises_beta: f64,
+    /// The paper's von Mises range at T (Fig 14).
+    pub paper_von_mises: [f64; 2],
+    /// The paper's lowest contact line value at T (Fig 15) and the β whose line reaches it here.
+    pub paper_contact_min: f64,
+    pub contact_min_beta: f64,
+    /// Relative tolerance of the reproduction gates.
+    pub reproduction_tolerance: f64,
+    /// Largest ratio of successive mesh differences for the self-convergence gate.
+    pub convergence_ratio: f64,
+}
+
+/// `[plane_stability]`: the explicit bound k λ_max(A⁻¹B) < 2 in 2D.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneStabilitySpec {
+    /// Meshes (squares per side) on which λ_max is computed.
+    pub meshes: Vec<usize>,
+    /// The mesh of the time runs.
+    pub run_mesh: usize,
+    pub steps: usize,
+    /// k / (2/λ_max) of the explicit runs.
+    pub fractions: Vec<f64>,
+    /// k / (2/λ_max) of the implicit and midpoint runs.
+    pub unconditional_fractions: Vec<f64>,
+    pub onset_bracket: f64,
+}
+
+/// `[plane_paths]`: the condensed and Newton paths on a linear problem, error against cost.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanePathsSpec {
+    pub elements: Vec<usize>,
+    pub steps: Vec<usize>,
+    pub error: String,
+    pub repeats: usize,
+    /// Largest relative difference of the two paths' errors (and solutions).
+    pub agreement: f64,
+}
+
+/// `[plane_performance]`: the paper's Test 2D time loop against a budget.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanePerformanceSpec {
+    /// Meshes (squares per side); the last is budgeted.
+    pub meshes: Vec<usize>,
+    pub steps: usize,
+    pub repeats: usize,
+    pub budget_seconds: f64,
+    /// Largest growth of (step cost / sparse solve cost) across meshes (max/min).
+    pub max_cost_ratio_spread: f64,
 }
 
 /// `[exact]`: the solution the errors are measured against.
@@ -122,6 +199,14 @@ pub struct DiscretizationSpec {
     pub graded_towards: Option<GradingEnd>,
     pub time_grading: Option<f64>,
     pub post_process_velocity: Option<bool>,
+    /// The scheme of a case without a scene (plane manufactured solutions).
+    pub scheme: Option<TimeScheme>,
+    /// Plane: `gauss2` or `nodal`.
+    pub contact_integration: Option<contactlab::model::quasistatic::plane::ContactIntegration>,
+    /// Plane: `auto`, `condensed` or `newton`.
+    pub solver_path: Option<contactlab::model::quasistatic::plane_solver::SolverPath>,
+    /// Plane: steps of the reference run on the same mesh for the time error `time_l2_final`.
+    pub time_reference_steps: Option<usize>,
 }
 
 /// `[[sweep]]`: a list of levels (M elements, N steps), each run with each scheme.
@@ -134,6 +219,10 @@ pub struct SweepSpec {
     pub steps: Vec<usize>,
     #[serde(default)]
     pub schemes: Vec<TimeScheme>,
+    /// Plane: also measure the time error against the reference run on the same mesh (needs
+    /// `[discretization] time_reference_steps`; meant for sweeps in k at a fixed mesh).
+    #[serde(default)]
+    pub time_error: bool,
 }
 
 impl SweepSpec {
@@ -166,6 +255,11 @@ pub struct RateGateSpec {
     pub ceiling: f64,
     /// Pairwise rates of the finest pairs must lie within this of the fit (default: `tolerance`).
     pub asymptotic_tolerance: Option<f64>,
+    /// For rates with an explained scatter: instead of |fit − expected| ≤ tolerance, require the
+    /// expected rate to lie inside the 95% confidence interval (the data do not reject it), with
+    /// the interval no wider than `ci_width`.
+    #[serde(default)]
+    pub expected_in_ci: bool,
     #[serde(default)]
     pub note: String,
 }
@@ -407,7 +501,11 @@ impl CaseFile {
 
     fn check(&self, p: &Path) -> Result<(), CaseError> {
         let f = self;
-        let error_names: Vec<&str> = ROD_ERRORS.to_vec();
+        let error_names: Vec<&str> = ROD_ERRORS
+            .iter()
+            .chain(PLANE_ERRORS.iter())
+            .copied()
+            .collect();
         for (i, s) in f.sweep.iter().enumerate() {
             if s.elements.is_empty() || s.steps.is_empty() {
                 return Err(invalid(
@@ -517,6 +615,12 @@ impl CaseFile {
             CaseKind::Extremes => needs(!f.extreme.is_empty(), "extreme")?,
             CaseKind::WorkPrecision => needs(f.work_precision.is_some(), "work_precision")?,
             CaseKind::Performance => needs(f.performance.is_some(), "performance")?,
+            CaseKind::PaperTest2d => needs(f.paper_test.is_some(), "paper_test")?,
+            CaseKind::PlaneStability => needs(f.plane_stability.is_some(), "plane_stability")?,
+            CaseKind::PlanePaths => needs(f.plane_paths.is_some(), "plane_paths")?,
+            CaseKind::PlanePerformance => {
+                needs(f.plane_performance.is_some(), "plane_performance")?
+            }
         }
         if f.scene.is_none() && f.exact.is_none() {
             return Err(invalid(

@@ -114,8 +114,24 @@ pub fn evaluate_rate_gate(
             return v;
         }
     };
+    let rate_check = if spec.expected_in_ci {
+        Check {
+            name: format!(
+                "expected rate {} inside the 95% CI of the fitted rate",
+                spec.expected_rate
+            ),
+            observed: fit.rate,
+            limit: format!(
+                "CI [{:.4}, {:.4}] contains {}",
+                fit.ci_low, fit.ci_high, spec.expected_rate
+            ),
+            passed: fit.ci_low <= spec.expected_rate && spec.expected_rate <= fit.ci_high,
+        }
+    } else {
+        Check::within("fitted rate", fit.rate, spec.expected_rate, spec.tolerance)
+    };
     let mut checks = vec![
-        Check::within("fitted rate", fit.rate, spec.expected_rate, spec.tolerance),
+        rate_check,
         Check::at_most("95% CI width", fit.ci_high - fit.ci_low, spec.ci_width),
     ];
     let finest = param
@@ -195,6 +211,7 @@ mod tests {
             ci_width: 0.1,
             ceiling: 1e-2,
             asymptotic_tolerance: None,
+            expected_in_ci: false,
             note: String::new(),
         }
     }
@@ -227,6 +244,23 @@ mod tests {
         s.ceiling = 1e-4;
         let v = evaluate_rate_gate("g".into(), &s, &h, &e);
         assert!(!v.passed);
+    }
+
+    #[test]
+    fn ci_containment_mode_accepts_scatter_around_the_expected_rate_and_rejects_a_wrong_one() {
+        // E = h² with ±10% deterministic scatter
+        let h: Vec<f64> = (0..6).map(|i| 0.1 / 2f64.powi(i)).collect();
+        let wiggle = [1.0, 1.1, 0.9, 1.08, 0.93, 1.02];
+        let e: Vec<f64> = h.iter().zip(wiggle).map(|(h, w)| h * h * w).collect();
+        let mut s = spec(2.0);
+        s.expected_in_ci = true;
+        s.finest_levels = 6;
+        s.ci_width = 0.5;
+        s.ceiling = 1.0;
+        s.asymptotic_tolerance = Some(0.5);
+        assert!(evaluate_rate_gate("g".into(), &s, &h, &e).passed);
+        s.expected_rate = 1.0;
+        assert!(!evaluate_rate_gate("g".into(), &s, &h, &e).passed);
     }
 
     #[test]

@@ -9,7 +9,7 @@ use serde::Serialize;
 use contactlab::error::Error as LabError;
 use contactlab::mesh::interval::{GradingEnd, IntervalMesh};
 use contactlab::model::quasistatic::rod::RodProblem;
-use contactlab::model::quasistatic::rod_solver::{RodParams, RodSolver, RodStats};
+use contactlab::model::quasistatic::rod_solver::{RodParams, RodSolver};
 use contactlab::model::quasistatic::scheme::TimeScheme;
 use contactlab::scene::rod::{RodScene, RodSceneFile};
 use contactlab::time::grid::TimeGrid;
@@ -57,7 +57,8 @@ pub struct LevelResult {
     pub u_end: f64,
     /// Wall time of the solver run including the error observer (s).
     pub cpu_seconds: f64,
-    pub stats: RodStats,
+    /// The solver's statistics (the model's own statistics type, as JSON).
+    pub stats: serde_json::Value,
 }
 
 /// Fills the mesh and time sections a case scene may omit (they are set per run).
@@ -299,7 +300,7 @@ impl RodStudy {
             errors,
             u_end,
             cpu_seconds,
-            stats,
+            stats: serde_json::to_value(&stats).unwrap_or(serde_json::Value::Null),
         })
     }
 }

@@ -28,9 +28,12 @@ pub fn run_scene(file: &Path, out: &Path) -> Result<String, String> {
     let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
     let source = file.display().to_string();
     let model = contactlab::scene::model_of(&text, &source).map_err(|e| e.to_string())?;
+    if model == "plane" {
+        return crate::scene_plane::run_plane_scene(&text, &source, out);
+    }
     if model != "rod" {
         return Err(format!(
-            "{source}: invalid model = \"{model}\": expected \"rod\" (the scenes this version runs)"
+            "{source}: invalid model = \"{model}\": expected \"rod\" or \"plane\""
         ));
     }
     let mut table: toml::Table = text

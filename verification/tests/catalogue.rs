@@ -28,6 +28,10 @@ fn every_case_parses_with_an_explanation_and_gates() {
             CaseKind::Extremes => !f.extreme.is_empty(),
             CaseKind::WorkPrecision => f.work_precision.is_some(),
             CaseKind::Performance => f.performance.is_some(),
+            CaseKind::PaperTest2d => f.paper_test.is_some(),
+            CaseKind::PlaneStability => f.plane_stability.is_some(),
+            CaseKind::PlanePaths => f.plane_paths.is_some(),
+            CaseKind::PlanePerformance => f.plane_performance.is_some(),
         };
         assert!(gated, "{}: no gates", f.id);
         assert_eq!(

@@ -9,6 +9,14 @@
 //! - `rod_solver`: factor once, condense onto the contact node, one scalar equation per step.
 //! - `rod_output`: the recorded solution (snapshots, histories, statistics).
 
+pub mod plane;
+pub mod plane_condensed;
+pub mod plane_contact;
+pub mod plane_dofs;
+pub mod plane_newton;
+pub mod plane_output;
+pub mod plane_solver;
+pub mod plane_stability;
 pub mod rod;
 pub mod rod_output;
 pub mod rod_solver;

@@ -4,4 +4,5 @@
 //!
 //! - `rod`: manufactured solutions of the rod problem T1D with time-dependent load and oil pressure.
 
+pub mod plane;
 pub mod rod;

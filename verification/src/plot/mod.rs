@@ -19,10 +19,17 @@
 //! ```
 
 mod axis;
+mod colormap;
 mod geom;
 mod render;
 #[cfg(test)]
 mod tests;
+mod triangles;
+
+pub use triangles::{
+    write_triangle_panels_svg, write_triangle_svg, write_triangle_svg_sized, FieldValues, Outline,
+    TriangleField, TriangleMeshPlot, TRIANGLE_PANEL_SIZE, TRIANGLE_SIZE,
+};
 
 use std::path::{Path, PathBuf};
 
@@ -365,6 +372,36 @@ pub enum PlotError {
     NoFigures {
         /// The SVG file that was to be written.
         path: PathBuf,
+    },
+    /// A triangle of a [`TriangleMeshPlot`] names a node that does not exist.
+    #[error("{path}: triangle {triangle} of the mesh plot \"{title}\" refers to node {node}, but the mesh has {nodes} nodes")]
+    TriangleIndex {
+        /// The SVG file that was to be written.
+        path: PathBuf,
+        /// Title of the offending plot.
+        title: String,
+        /// Index of the triangle.
+        triangle: usize,
+        /// The out-of-range node index.
+        node: usize,
+        /// Number of nodes of the mesh.
+        nodes: usize,
+    },
+    /// A [`TriangleField`] does not have one value per triangle (or per node).
+    #[error("{path}: field \"{field}\" of the mesh plot \"{title}\" has {found} values, expected one per {per} ({expected})")]
+    FieldLength {
+        /// The SVG file that was to be written.
+        path: PathBuf,
+        /// Title of the offending plot.
+        title: String,
+        /// Name of the field.
+        field: String,
+        /// "triangle" or "node".
+        per: &'static str,
+        /// Number of values expected.
+        expected: usize,
+        /// Number of values given.
+        found: usize,
     },
 }
 

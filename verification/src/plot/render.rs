@@ -39,27 +39,28 @@ const FONT_BYTES: &[u8] = include_bytes!(concat!(
 ));
 
 // Font sizes in plotters units (the SVG font-size is this / 1.24).
-const TITLE_SIZE: f64 = 21.0;
-const LABEL_SIZE: f64 = 18.0;
-const TICK_SIZE: f64 = 16.0;
-const LEGEND_SIZE: f64 = 16.0;
-const NOTE_SIZE: f64 = 16.0;
+pub(super) const TITLE_SIZE: f64 = 21.0;
+pub(super) const LABEL_SIZE: f64 = 18.0;
+pub(super) const TICK_SIZE: f64 = 16.0;
+pub(super) const LEGEND_SIZE: f64 = 16.0;
+pub(super) const NOTE_SIZE: f64 = 16.0;
 
-const TEXT: RGBColor = RGBColor(0x20, 0x20, 0x20);
-const GRID_MAJOR: RGBColor = RGBColor(0xD9, 0xD9, 0xD9);
+pub(super) const TEXT: RGBColor = RGBColor(0x20, 0x20, 0x20);
+pub(super) const GRID_MAJOR: RGBColor = RGBColor(0xD9, 0xD9, 0xD9);
 const GRID_MINOR: RGBColor = RGBColor(0xEE, 0xEE, 0xEE);
 const GUIDE: RGBColor = RGBColor(0x44, 0x44, 0x44);
-const NOTE: RGBColor = RGBColor(0x80, 0x80, 0x80);
+pub(super) const NOTE: RGBColor = RGBColor(0x80, 0x80, 0x80);
 
 /// log10(2): the reference slopes sit a factor 2 below their anchor point.
 const LOG10_2: f64 = std::f64::consts::LOG10_2;
 /// Pixel coordinates are clamped to this magnitude before clipping.
 const PIXEL_LIMIT: f64 = 1e12;
 
-type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+pub(super) type DrawResult<DB> =
+    Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// Registers the embedded font once; every later call returns the first outcome.
-fn ensure_font() -> Result<(), PlotError> {
+pub(super) fn ensure_font() -> Result<(), PlotError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED
         .get_or_init(|| register_font(FONT_FAMILY, FontStyle::Normal, FONT_BYTES).is_ok());
@@ -114,12 +115,12 @@ fn draw_grid<DB: DrawingBackend>(
 // ---------------------------------------------------------------------------------------------
 // Text helpers
 
-fn text_style(size: f64) -> TextStyle<'static> {
+pub(super) fn text_style(size: f64) -> TextStyle<'static> {
     TextStyle::from((FONT_FAMILY, size).into_font())
 }
 
 /// Estimated (width, height) of `text` in pixels.
-fn text_size(text: &str, size: f64) -> (f64, f64) {
+pub(super) fn text_size(text: &str, size: f64) -> (f64, f64) {
     match (FONT_FAMILY, size).into_font().box_size(text) {
         Ok((w, h)) => (f64::from(w), f64::from(h)),
         Err(_) => (0.6 * size * text.chars().count() as f64, size / 1.24),
@@ -140,7 +141,7 @@ fn draw_text_at<DB: DrawingBackend>(
     area.draw_text(text, &style, ipx(p))
 }
 
-fn draw_text_anchored<DB: DrawingBackend>(
+pub(super) fn draw_text_anchored<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     text: &str,
     size: f64,
@@ -156,7 +157,7 @@ fn draw_text_anchored<DB: DrawingBackend>(
 // ---------------------------------------------------------------------------------------------
 // Shapes
 
-fn stroke(color: RGBColor, width: u32) -> ShapeStyle {
+pub(super) fn stroke(color: RGBColor, width: u32) -> ShapeStyle {
     ShapeStyle {
         color: color.into(),
         filled: false,
@@ -164,7 +165,7 @@ fn stroke(color: RGBColor, width: u32) -> ShapeStyle {
     }
 }
 
-fn fill(color: RGBAColor) -> ShapeStyle {
+pub(super) fn fill(color: RGBAColor) -> ShapeStyle {
     ShapeStyle {
         color,
         filled: true,
@@ -172,7 +173,7 @@ fn fill(color: RGBAColor) -> ShapeStyle {
     }
 }
 
-fn draw_polyline<DB: DrawingBackend>(
+pub(super) fn draw_polyline<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     line: &[Px],
     style: ShapeStyle,
@@ -185,7 +186,7 @@ fn draw_polyline<DB: DrawingBackend>(
 }
 
 /// Draws a polyline solid, or dashed with (on, off) pixel lengths.
-fn draw_line<DB: DrawingBackend>(
+pub(super) fn draw_line<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     line: &[Px],
     style: ShapeStyle,
@@ -202,7 +203,7 @@ fn draw_line<DB: DrawingBackend>(
     }
 }
 
-fn draw_rect<DB: DrawingBackend>(
+pub(super) fn draw_rect<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     r: &Rect,
     style: ShapeStyle,

@@ -106,6 +106,14 @@ pub struct PerformanceReport {
     pub budget_seconds: f64,
 }
 
+/// A table of a case (rendered in the report; its rows are also in the JSON).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Table {
+    pub title: String,
+    pub header: Vec<String>,
+    pub rows: Vec<Vec<String>>,
+}
+
 /// Everything a case produced.
 #[derive(Debug, Clone, Serialize)]
 pub struct CaseReport {
@@ -125,6 +133,8 @@ pub struct CaseReport {
     pub work_precision: Option<WorkPrecisionReport>,
     pub performance: Option<PerformanceReport>,
     pub plots: Vec<PlotRef>,
+    /// Further tables (model-specific results).
+    pub tables: Vec<Table>,
     /// Wall time of the whole case (s).
     pub wall_seconds: f64,
     pub metadata: Metadata,
@@ -148,6 +158,7 @@ impl CaseReport {
             work_precision: None,
             performance: None,
             plots: Vec::new(),
+            tables: Vec::new(),
             wall_seconds: 0.0,
             metadata,
         }

@@ -242,7 +242,12 @@ fn case_section(s: &mut String, r: &CaseReport) {
             }
             row.push_str(&format!(
                 " {:.12} | {:.4} | {} |",
-                l.u_end, l.cpu_seconds, l.stats.max_newton_iterations
+                l.u_end,
+                l.cpu_seconds,
+                l.stats
+                    .get("max_newton_iterations")
+                    .map(|v| v.to_string())
+                    .unwrap_or_default()
             ));
             let _ = writeln!(s, "{row}");
         }
@@ -319,6 +324,15 @@ fn case_section(s: &mut String, r: &CaseReport) {
                 "| {} | {} | {:.0} | {:.5} | {:.3} |",
                 p.elements, p.steps, p.dof_steps, p.seconds, p.ns_per_dof_step
             );
+        }
+    }
+    for t in &r.tables {
+        let _ = writeln!(s, "\n### {}\n", t.title);
+        let _ = writeln!(s, "| {} |", t.header.join(" | "));
+        let _ = writeln!(s, "|{}", "---|".repeat(t.header.len()));
+        for row in &t.rows {
+            let cells: Vec<String> = row.iter().map(|c| cell(c)).collect();
+            let _ = writeln!(s, "| {} |", cells.join(" | "));
         }
     }
     if !r.plots.is_empty() {

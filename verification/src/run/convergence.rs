@@ -10,14 +10,15 @@ use crate::case::{Against, CaseFile, SweepSpec};
 use crate::gate::{evaluate_model_gate, evaluate_rate_gate, Check, GateVerdict};
 use crate::plot::{Figure, Series};
 use crate::report::case_report::{CaseReport, SweepReport};
-use crate::rod_study::{LevelResult, RodStudy};
+use crate::rod_study::LevelResult;
 use crate::run::paper_figures;
 use crate::run::RunContext;
+use crate::study::Study;
 
 /// The schemes a sweep runs (the study's scheme when the sweep names none).
-fn schemes_of(sweep: &SweepSpec, study: &RodStudy) -> Vec<TimeScheme> {
+fn schemes_of(sweep: &SweepSpec, study: &Study) -> Vec<TimeScheme> {
     if sweep.schemes.is_empty() {
-        vec![study.scheme]
+        vec![study.scheme()]
     } else {
         sweep.schemes.clone()
     }
@@ -34,7 +35,7 @@ pub fn parameter(level: &LevelResult, against: Against) -> f64 {
 
 /// Runs the case's sweeps, gates, references and figures.
 pub fn run(case: &CaseFile, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
-    let study = RodStudy::from_case(case).map_err(|e| e.to_string())?;
+    let study = Study::from_case(case)?;
     let total: usize = case
         .sweep
         .iter()
@@ -47,9 +48,11 @@ pub fn run(case: &CaseFile, ctx: &RunContext, report: &mut CaseReport) -> Result
                 .levels()
                 .par_iter()
                 .map(|&(m, n)| {
-                    let r = study.run_level(m, n, scheme).map_err(|e| {
-                        format!("sweep `{}` ({scheme}, M = {m}, N = {n}): {e}", sweep.name)
-                    });
+                    let r = study
+                        .run_level(m, n, scheme, sweep.time_error)
+                        .map_err(|e| {
+                            format!("sweep `{}` ({scheme}, M = {m}, N = {n}): {e}", sweep.name)
+                        });
                     bar.inc(1);
                     r
                 })
@@ -119,7 +122,7 @@ pub fn run(case: &CaseFile, ctx: &RunContext, report: &mut CaseReport) -> Result
     }
     for r in &case.reference {
         let level = study
-            .run_level(r.elements, r.steps, r.scheme)
+            .run_level(r.elements, r.steps, r.scheme, false)
             .map_err(|e| format!("reference `{}`: {e}", r.name))?;
         let observed = if r.quantity == "u_end" {
             level.u_end
@@ -150,8 +153,8 @@ pub fn run(case: &CaseFile, ctx: &RunContext, report: &mut CaseReport) -> Result
     report.gates = gates;
 
     convergence_plots(case, ctx, report)?;
-    if let Some(fig) = &case.figures {
-        paper_figures::draw(fig, &study, ctx, report)?;
+    if let (Some(fig), Study::Rod(rod)) = (&case.figures, &study) {
+        paper_figures::draw(fig, rod, ctx, report)?;
     }
     Ok(())
 }

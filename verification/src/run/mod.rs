@@ -4,7 +4,12 @@
 pub mod convergence;
 pub mod extremes;
 pub mod paper_figures;
+pub mod paper_test_2d;
 pub mod performance;
+pub mod plane_paths;
+pub mod plane_performance;
+pub mod plane_scene;
+pub mod plane_stability;
 pub mod stability;
 pub mod work_precision;
 
@@ -119,12 +124,16 @@ pub fn time_loop_seconds(
 }
 
 /// The kinds of the quasistatic case format ([`CaseFile`]).
-const QUASISTATIC_KINDS: [&str; 5] = [
+const QUASISTATIC_KINDS: [&str; 9] = [
     "convergence",
     "stability",
     "extremes",
     "work_precision",
     "performance",
+    "paper_test2d",
+    "plane_stability",
+    "plane_paths",
+    "plane_performance",
 ];
 
 /// Checks a case with its kind's format (called when a case is loaded).
@@ -154,6 +163,10 @@ pub fn run_case(case: &Case, ctx: &RunContext) -> CaseReport {
             CaseKind::Extremes => extremes::run(&file, ctx, &mut report),
             CaseKind::WorkPrecision => work_precision::run(&file, ctx, &mut report),
             CaseKind::Performance => performance::run(&file, ctx, &mut report),
+            CaseKind::PaperTest2d => paper_test_2d::run(&file, ctx, &mut report),
+            CaseKind::PlaneStability => plane_stability::run(&file, ctx, &mut report),
+            CaseKind::PlanePaths => plane_paths::run(&file, ctx, &mut report),
+            CaseKind::PlanePerformance => plane_performance::run(&file, ctx, &mut report),
         },
     };
     if let Err(message) = outcome {

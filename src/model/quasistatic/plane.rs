@@ -1,0 +1,228 @@
+//! Problem P of Fernández & Sofonea (2004) in two dimensions: a Kelvin–Voigt body Ω ⊂ R² with
+//!
+//!   σ = A ε(u̇) + B ε(u),  Div σ + f0 = 0,  u = 0 (or u·e_i = 0) on Γ1,  σν = f2 on Γ2,
+//!   −σ_ν = p_ν(u̇_ν) − g_ν,  σ_τ = g_τ on Γ3,  u(0) = u0          ((2.1)–(2.6)),
+//!
+//! where g is an optional boundary source on Γ3 (zero in the paper; manufactured solutions use it).
+//! Variational form: (A ε(u̇), ε(v)) + (B ε(u), ε(v)) + ∫_Γ3 p_ν(u̇_ν) v_ν = (f0, v) + ∫_Γ2 f2·v
+//! + ∫_Γ3 g·v for all v vanishing on Γ1.
+
+use std::fmt;
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use crate::contact::normal_law::NormalLaw;
+use crate::error::{require_positive, InputError};
+use crate::field::Field;
+use crate::material::plane_law::PlaneLaw;
+use crate::mesh::triangle::{RectangleSide, TriangleMesh};
+
+/// A closure deciding whether a boundary point (an edge midpoint) belongs to a boundary part.
+pub type BoundaryPredicate = Arc<dyn Fn([f64; 2]) -> bool + Send + Sync>;
+
+/// Which boundary edges a part covers.
+#[derive(Clone)]
+pub enum BoundarySelector {
+    /// Edges tagged with one of these rectangle sides.
+    Sides(Vec<RectangleSide>),
+    /// Edges whose midpoint satisfies the predicate.
+    Predicate(BoundaryPredicate),
+}
+
+impl fmt::Debug for BoundarySelector {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BoundarySelector::Sides(s) => write!(f, "Sides({s:?})"),
+            BoundarySelector::Predicate(_) => write!(f, "Predicate(..)"),
+        }
+    }
+}
+
+impl BoundarySelector {
+    /// One side.
+    pub fn side(side: RectangleSide) -> Self {
+        BoundarySelector::Sides(vec![side])
+    }
+
+    /// Whether edge `e` of `mesh` belongs to the part.
+    pub fn contains(&self, mesh: &TriangleMesh, e: usize) -> bool {
+        let edge = &mesh.boundary()[e];
+        match self {
+            BoundarySelector::Sides(sides) => edge.side.is_some_and(|s| sides.contains(&s)),
+            BoundarySelector::Predicate(p) => {
+                let (a, b) = (mesh.nodes()[edge.nodes[0]], mesh.nodes()[edge.nodes[1]]);
+                p([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])])
+            }
+        }
+    }
+}
+
+/// The displacement components a Γ1 part holds at zero.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Support {
+    /// u = 0 (clamped).
+    Clamped,
+    /// u_x = 0 only (rollers on a vertical wall).
+    FixX,
+    /// u_y = 0 only (rollers on a horizontal wall).
+    FixY,
+}
+
+impl Support {
+    /// Whether component c (0 = x, 1 = y) is fixed.
+    pub fn fixes(self, c: usize) -> bool {
+        match self {
+            Support::Clamped => true,
+            Support::FixX => c == 0,
+            Support::FixY => c == 1,
+        }
+    }
+}
+
+/// A Γ1 part.
+#[derive(Debug, Clone)]
+pub struct DirichletPart {
+    pub boundary: BoundarySelector,
+    pub support: Support,
+}
+
+/// A Γ2 part with its traction f2(x, y, t).
+#[derive(Debug, Clone)]
+pub struct TractionPart {
+    pub boundary: BoundarySelector,
+    pub traction: [Field; 2],
+}
+
+/// How the contact integral ∫_Γ3 p_ν(w_ν) v_ν is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactIntegration {
+    /// Two Gauss points per edge (the default).
+    #[default]
+    Gauss2,
+    /// At the nodes (lumped), with the nodal normal the length-weighted mean of the adjacent edges'.
+    Nodal,
+}
+
+/// The Γ3 part: the normal damped response law and an optional boundary source g(x, y, t).
+#[derive(Debug, Clone)]
+pub struct ContactPart {
+    pub boundary: BoundarySelector,
+    pub law: Arc<dyn NormalLaw>,
+    pub integration: ContactIntegration,
+    pub source: Option<[Field; 2]>,
+}
+
+/// The data of the plane problem.
+#[derive(Debug, Clone)]
+pub struct PlaneProblem {
+    pub mesh: TriangleMesh,
+    pub final_time: f64,
+    /// A (viscosity).
+    pub viscosity: Arc<dyn PlaneLaw>,
+    /// B (elasticity).
+    pub elasticity: Arc<dyn PlaneLaw>,
+    pub body_force: [Field; 2],
+    pub dirichlet: Vec<DirichletPart>,
+    pub traction: Vec<TractionPart>,
+    pub contact: Option<ContactPart>,
+    pub initial_displacement: [Field; 2],
+}
+
+/// Which part each boundary edge belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeRole {
+    Free,
+    Dirichlet(usize),
+    Traction(usize),
+    Contact,
+}
+
+impl PlaneProblem {
+    /// Checks the data and assigns each boundary edge to at most one part.
+    pub fn validate(&self) -> Result<Vec<EdgeRole>, InputError> {
+        require_positive("final_time", self.final_time)?;
+        self.viscosity.validate("viscosity")?;
+        self.elasticity.validate("elasticity")?;
+        for (c, f) in self.body_force.iter().enumerate() {
+            f.validate(&format!("body_force[{c}]"))?;
+        }
+        for (c, f) in self.initial_displacement.iter().enumerate() {
+            f.validate(&format!("initial_displacement[{c}]"))?;
+        }
+        let mut roles = vec![EdgeRole::Free; self.mesh.boundary().len()];
+        let mut assign = |e: usize, role: EdgeRole, name: &str| -> Result<(), InputError> {
+            if roles[e] != EdgeRole::Free {
+                let n = self.mesh.boundary()[e].nodes;
+                return Err(InputError::new(
+                    name,
+                    format!("edge {e} (nodes {n:?})"),
+                    format!("an edge not already in {:?}", roles[e]),
+                ));
+            }
+            roles[e] = role;
+            Ok(())
+        };
+        for e in 0..self.mesh.boundary().len() {
+            for (i, d) in self.dirichlet.iter().enumerate() {
+                if d.boundary.contains(&self.mesh, e) {
+                    assign(e, EdgeRole::Dirichlet(i), &format!("dirichlet[{i}]"))?;
+                }
+            }
+            for (i, t) in self.traction.iter().enumerate() {
+                if t.boundary.contains(&self.mesh, e) {
+                    assign(e, EdgeRole::Traction(i), &format!("traction[{i}]"))?;
+                }
+            }
+            if let Some(c) = &self.contact {
+                if c.boundary.contains(&self.mesh, e) {
+                    assign(e, EdgeRole::Contact, "contact")?;
+                }
+            }
+        }
+        for (i, t) in self.traction.iter().enumerate() {
+            for (c, f) in t.traction.iter().enumerate() {
+                f.validate(&format!("traction[{i}].traction[{c}]"))?;
+            }
+            if !roles.contains(&EdgeRole::Traction(i)) {
+                return Err(InputError::new(
+                    format!("traction[{i}]"),
+                    "(no edges)",
+                    "a boundary part that selects some edges",
+                ));
+            }
+        }
+        for (i, _) in self.dirichlet.iter().enumerate() {
+            if !roles.contains(&EdgeRole::Dirichlet(i)) {
+                return Err(InputError::new(
+                    format!("dirichlet[{i}]"),
+                    "(no edges)",
+                    "a boundary part that selects some edges",
+                ));
+            }
+        }
+        if let Some(c) = &self.contact {
+            c.law.validate()?;
+            if let Some(g) = &c.source {
+                for (k, f) in g.iter().enumerate() {
+                    f.validate(&format!("contact.source[{k}]"))?;
+                }
+            }
+            if !roles.contains(&EdgeRole::Contact) {
+                return Err(InputError::new(
+                    "contact",
+                    "(no edges)",
+                    "a boundary part that selects some edges",
+                ));
+            }
+        }
+        Ok(roles)
+    }
+
+    /// Whether A and B are both linear (the model then factors once and condenses the contact).
+    pub fn is_linear(&self) -> bool {
+        self.viscosity.as_linear().is_some() && self.elasticity.as_linear().is_some()
+    }
+}

@@ -1,0 +1,565 @@
+//! The plane Kelvin–Voigt scheme in time: w_n solves
+//!
+//!   (A ε(w_n), ε(v)) + (B ε(u_{n−1} + θ k_n w_n), ε(v)) + j(w_n, v) = (f(τ_n), v)   for all v,
+//!   u_n = u_{n−1} + k_n w_n
+//!
+//! (Fernández & Sofonea 2004, (3.3) for θ = 0). The model picks the path from what the problem
+//! contains: linear A and B → the condensed path (factor A + θkB once per step size, condense the
+//! contact onto Γ3, one sparse solve per step); nonlinear A or B → a full semismooth Newton method.
+
+use std::collections::BTreeMap;
+
+use crate::contact::normal_law::SpaceTime;
+use crate::error::{Error, InputError, SolveError};
+use crate::model::quasistatic::plane::PlaneProblem;
+use crate::model::quasistatic::plane_condensed::{assemble_linear, CondensedStep};
+use crate::model::quasistatic::plane_contact::{ContactFailure, ContactNewtonParams};
+use crate::model::quasistatic::plane_dofs::PlaneDofs;
+use crate::model::quasistatic::plane_newton::{NewtonFailure, NewtonParams, NewtonStep};
+use crate::model::quasistatic::scheme::TimeScheme;
+use crate::time::grid::TimeGrid;
+
+/// Which solver path to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SolverPath {
+    /// Condensed when A and B are linear, Newton otherwise.
+    #[default]
+    Auto,
+    /// Factor once and condense onto Γ3 (linear A and B only).
+    Condensed,
+    /// Full semismooth Newton on the whole system.
+    Newton,
+}
+
+/// Parameters of the plane solver.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlaneParams {
+    pub path: SolverPath,
+    pub contact_newton: ContactNewtonParams,
+    pub newton: NewtonParams,
+    /// When Γ1 leaves a rigid motion free and the first steps have no equilibrium (the load cannot
+    /// yet be balanced by the contact), skip them — the body stays at u0 — and start the scheme at
+    /// the first step that has one. Without it, such a step is a [`SolveError::NoEquilibrium`].
+    pub start_at_first_equilibrium: bool,
+}
+
+/// Statistics of a run.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct PlaneStats {
+    /// `condensed` or `newton`.
+    pub path: String,
+    pub dofs: usize,
+    pub contact_points: usize,
+    pub steps: usize,
+    /// Sparse numeric factorizations (condensed: one per distinct step size; Newton: one per
+    /// iteration).
+    pub factorizations: usize,
+    /// Stored entries of the Cholesky factor.
+    pub factor_nnz: usize,
+    /// Dense factorizations of the reduced contact Jacobian (condensed path).
+    pub contact_factorizations: usize,
+    pub newton_iterations: usize,
+    pub max_newton_iterations: usize,
+    /// Steps skipped for lack of equilibrium (with `start_at_first_equilibrium`).
+    pub skipped_steps: Vec<usize>,
+    /// Rigid motions left free by Γ1 (carried by the contact).
+    pub free_rigid_motions: usize,
+}
+
+/// What the observer sees after each step (and at t_0).
+#[derive(Debug, Clone, Copy)]
+pub struct PlaneStep<'a> {
+    pub n: usize,
+    pub t: f64,
+    pub data_time: f64,
+    pub k: f64,
+    /// u_n at all nodes, interleaved (u_x, u_y).
+    pub u: &'a [f64],
+    /// w_n at all nodes (`None` at n = 0).
+    pub w: Option<&'a [f64]>,
+    /// Normal velocities and pressures p_ν at the contact points.
+    pub contact_velocity: &'a [f64],
+    pub contact_pressure: &'a [f64],
+    pub newton_iterations: usize,
+    /// The step was skipped for lack of equilibrium.
+    pub skipped: bool,
+}
+
+/// Receives every step.
+pub trait PlaneObserver {
+    fn observe(&mut self, step: &PlaneStep<'_>);
+}
+
+impl<F: FnMut(&PlaneStep<'_>)> PlaneObserver for F {
+    fn observe(&mut self, step: &PlaneStep<'_>) {
+        self(step)
+    }
+}
+
+/// A plane problem discretized in space and time.
+#[derive(Debug)]
+pub struct PlaneSolver {
+    problem: PlaneProblem,
+    dofs: PlaneDofs,
+    grid: TimeGrid,
+    scheme: TimeScheme,
+    params: PlaneParams,
+    path: SolverPath,
+    /// Condensed step operators by step size (bits of k).
+    condensed: BTreeMap<u64, CondensedStep>,
+    newton: Option<NewtonStep>,
+    static_load: Vec<f64>,
+    has_dynamic_load: bool,
+}
+
+impl PlaneSolver {
+    /// Validates, builds the dofs and chooses the path.
+    pub fn new(
+        problem: &PlaneProblem,
+        grid: TimeGrid,
+        scheme: TimeScheme,
+        params: PlaneParams,
+    ) -> Result<Self, Error> {
+        let roles = problem.validate()?;
+        if (grid.final_time() - problem.final_time).abs() > 1e-12 * problem.final_time {
+            return Err(InputError::new(
+                "time.final_time",
+                grid.final_time(),
+                format!("the final time {}", problem.final_time),
+            )
+            .into());
+        }
+        let dofs = PlaneDofs::new(problem, roles)?;
+        let path = match (params.path, problem.is_linear()) {
+            (SolverPath::Auto, true) | (SolverPath::Condensed, true) => SolverPath::Condensed,
+            (SolverPath::Auto, false) | (SolverPath::Newton, _) => SolverPath::Newton,
+            (SolverPath::Condensed, false) => {
+                return Err(InputError::new(
+                    "solver.path",
+                    "condensed",
+                    "\"newton\" or \"auto\": the condensed path needs linear A and B",
+                )
+                .into())
+            }
+        };
+        if path == SolverPath::Newton && !dofs.rigid_modes.is_empty() {
+            return Err(InputError::new(
+                "dirichlet",
+                format!("{} rigid motion(s) left free by Γ1", dofs.rigid_modes.len()),
+                "a Γ1 that holds every rigid motion for the Newton path (only the condensed path carries a free motion by the contact)",
+            )
+            .into());
+        }
+        // u0 must vanish on Γ1.
+        for d in 0..2 * dofs.n_nodes {
+            if dofs.fixed[d] {
+                let p = problem.mesh.nodes()[d / 2];
+                let v = problem.initial_displacement[d % 2].eval(p[0], p[1], 0.0);
+                if v != 0.0 {
+                    return Err(InputError::new(
+                        format!("initial_displacement[{}]", d % 2),
+                        format!("{v} at ({}, {})", p[0], p[1]),
+                        "u0 = 0 on Γ1",
+                    )
+                    .into());
+                }
+            }
+        }
+        let mut static_load = vec![0.0; 2 * dofs.n_nodes];
+        dofs.load_into(problem, 0.0, &|f| !f.dependence().t, &mut static_load);
+        let has_dynamic_load = problem.body_force.iter().any(|f| f.dependence().t)
+            || problem
+                .traction
+                .iter()
+                .any(|t| t.traction.iter().any(|f| f.dependence().t))
+            || problem
+                .contact
+                .as_ref()
+                .and_then(|c| c.source.as_ref())
+                .is_some_and(|g| g.iter().any(|f| f.dependence().t));
+        Ok(Self {
+            problem: problem.clone(),
+            dofs,
+            grid,
+            scheme,
+            params,
+            path,
+            condensed: BTreeMap::new(),
+            newton: None,
+            static_load,
+            has_dynamic_load,
+        })
+    }
+
+    /// The discrete structure.
+    pub fn dofs(&self) -> &PlaneDofs {
+        &self.dofs
+    }
+
+    /// The problem.
+    pub fn problem(&self) -> &PlaneProblem {
+        &self.problem
+    }
+
+    /// The time grid.
+    pub fn grid(&self) -> &TimeGrid {
+        &self.grid
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> TimeScheme {
+        self.scheme
+    }
+
+    /// The path the model chose.
+    pub fn path(&self) -> SolverPath {
+        self.path
+    }
+
+    /// The time of one forward-and-backward solve with the factored step operator (the first step
+    /// size), best of `repeats`: the reference for the cost of a step.
+    pub fn time_sparse_solve(&mut self, repeats: usize) -> Result<f64, SolveError> {
+        let k = self.grid.step(1);
+        let op = self.condensed_for(k)?;
+        Ok(op.time_plain_solve(repeats))
+    }
+
+    fn contact_positions(&self) -> Vec<SpaceTime> {
+        self.dofs
+            .contact_points
+            .iter()
+            .map(|p| SpaceTime {
+                x: p.position[0],
+                y: p.position[1],
+                t: 0.0,
+            })
+            .collect()
+    }
+
+    /// The factored condensed operator for step size k (built on first use).
+    fn condensed_for(&mut self, k: f64) -> Result<&mut CondensedStep, SolveError> {
+        let theta_k = self.scheme.theta() * k;
+        let key = if theta_k == 0.0 { 0 } else { k.to_bits() };
+        if !self.condensed.contains_key(&key) {
+            let (Some(a), Some(b)) = (
+                self.problem.viscosity.as_linear(),
+                self.problem.elasticity.as_linear(),
+            ) else {
+                unreachable!("the condensed path is chosen for linear laws only")
+            };
+            let (a, b) = (*a, *b);
+            let mut values = vec![0.0; self.dofs.pattern.nnz()];
+            assemble_linear(
+                &self.dofs,
+                &self.dofs.pattern,
+                |e| {
+                    let sa = a.apply(e);
+                    let sb = b.apply(e);
+                    [
+                        sa[0] + theta_k * sb[0],
+                        sa[1] + theta_k * sb[1],
+                        sa[2] + theta_k * sb[2],
+                    ]
+                },
+                &mut values,
+            );
+            let positions = self.contact_positions();
+            let step = CondensedStep::new(&self.dofs, &values, k, &positions)?;
+            self.condensed.insert(key, step);
+        }
+        Ok(self.condensed.get_mut(&key).expect("inserted above"))
+    }
+
+    /// F(τ) over all dofs into `out`.
+    fn load(&self, tau: f64, out: &mut [f64], work: &mut [f64]) {
+        out.copy_from_slice(&self.static_load);
+        if self.has_dynamic_load {
+            self.dofs
+                .load_into(&self.problem, tau, &|f| f.dependence().t, work);
+            for (o, w) in out.iter_mut().zip(work.iter()) {
+                *o += w;
+            }
+        }
+    }
+
+    /// out −= Σ_e B ε(u) : ε(φ) (all dofs).
+    fn subtract_elastic_forces(&self, u: &[f64], out: &mut [f64]) {
+        let tri = self.problem.mesh.triangles();
+        let b = self.problem.elasticity.as_ref();
+        for (e, el) in self.dofs.elements.iter().enumerate() {
+            let t = tri[e];
+            let ul: [f64; 6] = std::array::from_fn(|p| u[2 * t[p / 2] + p % 2]);
+            let f = el.internal_forces(&b.stress(&el.strain(&ul)));
+            for p in 0..6 {
+                out[2 * t[p / 2] + p % 2] -= f[p];
+            }
+        }
+    }
+
+    /// Runs from t_0 to t_N, calling `observer` at n = 0 and after every step.
+    pub fn run(&mut self, observer: &mut impl PlaneObserver) -> Result<PlaneStats, SolveError> {
+        let nn = self.dofs.n_nodes;
+        let ns = self.dofs.n_solved();
+        let nc = self.dofs.contact_points.len();
+        let q = self.dofs.rigid_modes.len();
+        let mut stats = PlaneStats {
+            path: match self.path {
+                SolverPath::Newton => "newton",
+                _ => "condensed",
+            }
+            .to_string(),
+            dofs: ns,
+            contact_points: nc,
+            free_rigid_motions: q,
+            ..Default::default()
+        };
+        let mut u: Vec<f64> = (0..2 * nn)
+            .map(|d| {
+                let p = self.problem.mesh.nodes()[d / 2];
+                if self.dofs.fixed[d] {
+                    0.0
+                } else {
+                    self.problem.initial_displacement[d % 2].eval(p[0], p[1], 0.0)
+                }
+            })
+            .collect();
+        if let Some(d) = u.iter().position(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite {
+                step: 0,
+                time: 0.0,
+                quantity: format!("initial displacement at node {}", d / 2),
+                value: u[d],
+                hint: String::new(),
+            });
+        }
+        let mut w_full = vec![0.0; 2 * nn];
+        let mut w = vec![0.0; ns];
+        let mut r = vec![0.0; nc];
+        let mut pressures = vec![0.0; nc];
+        let mut alpha = vec![0.0; q];
+        let mut b_full = vec![0.0; 2 * nn];
+        let mut b = vec![0.0; ns];
+        let mut work = vec![0.0; 2 * nn];
+        observer.observe(&PlaneStep {
+            n: 0,
+            t: self.grid.times()[0],
+            data_time: self.grid.times()[0],
+            k: 0.0,
+            u: &u,
+            w: None,
+            contact_velocity: &r,
+            contact_pressure: &pressures,
+            newton_iterations: 0,
+            skipped: false,
+        });
+        let mut started = false;
+        for n in 1..=self.grid.steps() {
+            let t_prev = self.grid.times()[n - 1];
+            let t = self.grid.times()[n];
+            let k = t - t_prev;
+            let tau = self.scheme.data_time(t_prev, t);
+            self.load(tau, &mut b_full, &mut work);
+            let iterations = match self.path {
+                SolverPath::Newton => {
+                    if self.newton.is_none() {
+                        self.newton = Some(NewtonStep::new(&self.dofs)?);
+                    }
+                    let theta_k = self.scheme.theta() * k;
+                    let newton = self.newton.as_mut().expect("created above");
+                    let before = newton.factorizations;
+                    let it = newton
+                        .solve(
+                            &self.problem,
+                            &self.dofs,
+                            &u,
+                            theta_k,
+                            &b_full,
+                            tau,
+                            &mut w,
+                            &self.params.newton,
+                        )
+                        .map_err(|e| match e {
+                            NewtonFailure::NotConverged {
+                                iterations,
+                                residual,
+                            } => SolveError::NewtonNotConverged {
+                                step: n,
+                                time: t,
+                                iterations,
+                                residual,
+                                tolerance: self.params.newton.relative_tolerance,
+                            },
+                            NewtonFailure::Singular(e) => e,
+                            NewtonFailure::NonFinite => SolveError::NonFinite {
+                                step: n,
+                                time: t,
+                                quantity: "Newton residual".into(),
+                                value: f64::NAN,
+                                hint: String::new(),
+                            },
+                        })?;
+                    stats.factorizations += newton.factorizations - before;
+                    // contact state for the observer
+                    if let Some(c) = &self.problem.contact {
+                        for (g, pt) in self.dofs.contact_points.iter().enumerate() {
+                            r[g] = pt
+                                .entries
+                                .iter()
+                                .map(|&(d, coef)| {
+                                    coef * self.dofs.solved[d].map(|s| w[s]).unwrap_or(0.0)
+                                })
+                                .sum();
+                            let at = SpaceTime {
+                                x: pt.position[0],
+                                y: pt.position[1],
+                                t: tau,
+                            };
+                            pressures[g] = c.law.value(r[g], at);
+                        }
+                    }
+                    for (d, wf) in w_full.iter_mut().enumerate() {
+                        *wf = self.dofs.solved[d].map(|s| w[s]).unwrap_or(0.0);
+                    }
+                    it
+                }
+                _ => {
+                    self.subtract_elastic_forces(&u, &mut b_full);
+                    for (s, &d) in self.dofs.solved_dofs.iter().enumerate() {
+                        b[s] = b_full[d];
+                    }
+                    let b_rigid: Vec<f64> = self
+                        .dofs
+                        .rigid_modes
+                        .iter()
+                        .map(|m| {
+                            m.iter()
+                                .zip(&b_full)
+                                .zip(&self.dofs.fixed)
+                                .filter(|(_, f)| !**f)
+                                .map(|((a, b), _)| a * b)
+                                .sum()
+                        })
+                        .collect();
+                    let law = self.problem.contact.as_ref().map(|c| c.law.clone());
+                    let params = self.params.contact_newton;
+                    let factored_before = self.condensed.len();
+                    let op = self.condensed_for(k)?;
+                    let outcome =
+                        op.solve(law.as_deref(), tau, &b, &b_rigid, &mut w, &alpha, &params);
+                    stats.factor_nnz = op.nnz();
+                    let contact_fact = op.contact.factorizations;
+                    pressures.copy_from_slice(&op.contact.pressures()[..nc]);
+                    r.copy_from_slice(&op.contact.velocities()[..nc]);
+                    if self.condensed.len() > factored_before {
+                        stats.factorizations += 1;
+                    }
+                    stats.contact_factorizations = stats.contact_factorizations.max(contact_fact);
+                    match outcome {
+                        Ok((a, it)) => {
+                            alpha = a;
+                            for (d, wf) in w_full.iter_mut().enumerate() {
+                                let mut v = self.dofs.solved[d].map(|s| w[s]).unwrap_or(0.0);
+                                for (j, mode) in self.dofs.rigid_modes.iter().enumerate() {
+                                    v += alpha[j] * mode[d];
+                                }
+                                *wf = v;
+                            }
+                            it
+                        }
+                        Err(ContactFailure::NoEquilibrium(reason)) => {
+                            if self.params.start_at_first_equilibrium && !started {
+                                stats.skipped_steps.push(n);
+                                stats.steps += 1;
+                                w_full.iter_mut().for_each(|v| *v = 0.0);
+                                r.iter_mut().for_each(|v| *v = 0.0);
+                                observer.observe(&PlaneStep {
+                                    n,
+                                    t,
+                                    data_time: tau,
+                                    k,
+                                    u: &u,
+                                    w: Some(&w_full),
+                                    contact_velocity: &r,
+                                    contact_pressure: &pressures,
+                                    newton_iterations: 0,
+                                    skipped: true,
+                                });
+                                continue;
+                            }
+                            return Err(SolveError::NoEquilibrium {
+                                step: n,
+                                time: t,
+                                reason,
+                            });
+                        }
+                        Err(ContactFailure::NotConverged {
+                            iterations,
+                            residual,
+                        }) => {
+                            return Err(SolveError::NewtonNotConverged {
+                                step: n,
+                                time: t,
+                                iterations,
+                                residual,
+                                tolerance: params.relative_tolerance,
+                            })
+                        }
+                        Err(ContactFailure::NonFinite) => {
+                            return Err(SolveError::NonFinite {
+                                step: n,
+                                time: t,
+                                quantity: "condensed contact problem".into(),
+                                value: f64::NAN,
+                                hint: String::new(),
+                            })
+                        }
+                    }
+                }
+            };
+            started = true;
+            let mut finite = true;
+            for (ui, wi) in u.iter_mut().zip(&w_full) {
+                *ui += k * wi;
+                finite &= ui.abs() < f64::INFINITY;
+            }
+            if !finite {
+                let (bound, hint) = (self.scheme == TimeScheme::Explicit, "; the explicit scheme is stable only for k λ_max(A⁻¹B) < 2: use a smaller step or the implicit or midpoint scheme");
+                return Err(SolveError::NonFinite {
+                    step: n,
+                    time: t,
+                    quantity: "displacement u_n".into(),
+                    value: u
+                        .iter()
+                        .copied()
+                        .find(|v| !v.is_finite())
+                        .unwrap_or(f64::NAN),
+                    hint: if bound {
+                        hint.to_string()
+                    } else {
+                        String::new()
+                    },
+                });
+            }
+            stats.steps += 1;
+            stats.newton_iterations += iterations;
+            stats.max_newton_iterations = stats.max_newton_iterations.max(iterations);
+            observer.observe(&PlaneStep {
+                n,
+                t,
+                data_time: tau,
+                k,
+                u: &u,
+                w: Some(&w_full),
+                contact_velocity: &r,
+                contact_pressure: &pressures,
+                newton_iterations: iterations,
+                skipped: false,
+            });
+        }
+        if let Some(nt) = &self.newton {
+            stats.factor_nnz = stats.factor_nnz.max(nt.nnz());
+        }
+        Ok(stats)
+    }
+}

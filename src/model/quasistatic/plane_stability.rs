@@ -1,0 +1,94 @@
+//! The explicit scheme's step bound in 2D (shared/spec/quasistatic.md, stability note): with
+//! linear A and B the explicit update is u_n = (I − k A⁻¹B) u_{n−1} + …, stable only while
+//! k λ_max(A⁻¹B) < 2, with λ_max the largest eigenvalue of the symmetric pencil K_B x = λ K_A x on
+//! the solved dofs.
+//!
+//! The bound does not degrade with h: for the isotropic forms (L τ) = a1 tr τ I + a2 τ, the
+//! Rayleigh quotient τ:Bτ/τ:Aτ of any strain lies between the constitutive ratios of the deviatoric
+//! (b2/a2) and volumetric ((2b1 + b2)/(2a1 + a2)) parts, so λ_max ≤ max of the two, approached as the
+//! mesh resolves strains concentrated in the worse mode.
+
+use faer::{Mat, Side};
+
+use crate::error::{Error, InputError, SolveError};
+use crate::material::plane_law::IsotropicLinear;
+use crate::model::quasistatic::plane_condensed::assemble_linear;
+use crate::model::quasistatic::plane_solver::PlaneSolver;
+
+/// The largest dof count for which the dense generalized eigenproblem is solved.
+pub const DENSE_LIMIT: usize = 4000;
+
+/// max(b2/a2, (2 b1 + b2)/(2 a1 + a2)): the supremum of τ:Bτ / τ:Aτ over plane strains.
+pub fn constitutive_ratio(a: &IsotropicLinear, b: &IsotropicLinear) -> f64 {
+    (b.a2 / a.a2).max((2.0 * b.a1 + b.a2) / (2.0 * a.a1 + a.a2))
+}
+
+/// λ_max of K_B x = λ K_A x on the solved dofs of a linear problem (dense: Cholesky of K_A, then the
+/// eigenvalues of L⁻¹ K_B L⁻ᵀ).
+pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error> {
+    let problem = solver.problem();
+    let (Some(a), Some(b)) = (
+        problem.viscosity.as_linear(),
+        problem.elasticity.as_linear(),
+    ) else {
+        return Err(InputError::new(
+            "viscosity",
+            "(nonlinear)",
+            "linear A and B for the explicit bound k λ_max(A⁻¹B) < 2",
+        )
+        .into());
+    };
+    let dofs = solver.dofs();
+    let n = dofs.n_solved();
+    if n > DENSE_LIMIT {
+        return Err(InputError::new(
+            "mesh",
+            format!("{n} dofs"),
+            format!("at most {DENSE_LIMIT} dofs for the dense eigenproblem"),
+        )
+        .into());
+    }
+    let dense = |law: &IsotropicLinear| -> Mat<f64> {
+        let mut values = vec![0.0; dofs.pattern.nnz()];
+        assemble_linear(dofs, &dofs.pattern, |e| law.apply(e), &mut values);
+        let mut m = Mat::<f64>::zeros(n, n);
+        let (cp, ri) = (dofs.pattern.col_ptr(), dofs.pattern.row_idx());
+        for j in 0..n {
+            for k in cp[j]..cp[j + 1] {
+                m[(ri[k], j)] = values[k];
+                m[(j, ri[k])] = values[k];
+            }
+        }
+        m
+    };
+    let (ka, kb) = (dense(a), dense(b));
+    let llt = ka.llt(Side::Lower).map_err(|_| SolveError::Singular {
+        operator: "K_A (viscosity)".into(),
+        row: 0,
+        pivot: f64::NAN,
+    })?;
+    let l = llt.L().to_owned();
+    // C = L⁻¹ K_B L⁻ᵀ
+    let mut c = kb;
+    faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+        l.as_ref(),
+        c.as_mut(),
+        faer::Par::Seq,
+    );
+    let mut ct = c.transpose().to_owned();
+    faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+        l.as_ref(),
+        ct.as_mut(),
+        faer::Par::Seq,
+    );
+    let eig = ct
+        .self_adjoint_eigenvalues(Side::Lower)
+        .map_err(|_| SolveError::Singular {
+            operator: "L⁻¹ K_B L⁻ᵀ (eigenvalues did not converge)".into(),
+            row: 0,
+            pivot: f64::NAN,
+        })?;
+    eig.last()
+        .copied()
+        .ok_or_else(|| InputError::new("mesh", "0 dofs", "at least one free dof").into())
+}

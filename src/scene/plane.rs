@@ -1,0 +1,603 @@
+//! The plane scene (`model = "plane"`): problem P in 2D — geometry, materials, boundary parts,
+//! contact law, scheme and outputs.
+//!
+//! ```toml
+//! model = "plane"
+//! title = "Fernández–Sofonea Test 2D, clamped sides, β = 1000"
+//!
+//! [geometry]                       # a rectangle of n_x × n_y squares, each cut along a diagonal
+//! origin = [0.0, 0.0]
+//! size = [6.0, 6.0]
+//! divisions = [24, 24]
+//! diagonal = "up"                  # "up": (x_i, y_j)–(x_{i+1}, y_{j+1}) (default) | "down"
+//! # grading = [1.0, 1.0]           # power-law exponents per direction
+//! # graded_towards = ["start", "start"]
+//!
+//! [time]
+//! final_time = 1.0
+//! steps = 100                      # or times = [...]; grading = 1.0
+//! scheme = "explicit"              # "explicit" (the paper's) | "implicit" | "midpoint"
+//!
+//! [viscosity]                      # A: "paper" (mu, eta) | "isotropic" (a1, a2) | "saturating" (mu, eta, gamma, tau_c)
+//! law = "paper"
+//! mu = 30.0
+//! eta = 20.0
+//!
+//! [elasticity]                     # B: "plane_stress" | "plane_strain" (young, poisson) | "isotropic" (a1, a2) | "softening" (lambda, shear, delta, eps_c)
+//! law = "plane_stress"
+//! young = 100.0
+//! poisson = 0.3
+//!
+//! [body_force]
+//! value = [0.0, 0.0]               # numbers or expressions of x, y, t
+//!
+//! [[dirichlet]]                    # Γ1 parts: by side, or by an expression of x, y positive on the
+//! sides = ["left", "right"]        # part's edge midpoints: where = "1e-9 - x"
+//! support = "clamped"              # "clamped" | "fix_x" | "fix_y"
+//!
+//! [[traction]]                     # Γ2 parts
+//! sides = ["top"]
+//! value = [0.0, "-10*(6 - x)*t"]
+//!
+//! [contact]                        # Γ3
+//! sides = ["bottom"]
+//! law = "lubricated"               # "linear" | "lubricated" | "prescribed" (as for the rod)
+//! beta = 1000.0
+//! p0 = 2.0
+//! integration = "gauss2"           # "gauss2" (default) | "nodal"
+//!
+//! [initial]
+//! displacement = [0.0, 0.0]
+//!
+//! [output]
+//! times = [0.5, 1.0]
+//!
+//! [solver]
+//! path = "auto"                    # "auto" | "condensed" | "newton"
+//! start_at_first_equilibrium = false
+//! ```
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, InputError};
+use crate::material::nonlinear::{SaturatingViscosity, SofteningElasticity};
+use crate::material::plane_law::{IsotropicLinear, PlaneLaw};
+use crate::mesh::triangle::{Diagonal, Grading, RectangleSide, TriangleMesh};
+use crate::model::quasistatic::plane::{
+    BoundarySelector, ContactIntegration, ContactPart, DirichletPart, PlaneProblem, Support,
+    TractionPart,
+};
+use crate::model::quasistatic::plane_output::{PlaneOutputRequest, PlaneSolution};
+use crate::model::quasistatic::plane_solver::{PlaneParams, PlaneSolver, SolverPath};
+use crate::model::quasistatic::scheme::TimeScheme;
+use crate::scene::field_spec::FieldSpec;
+use crate::time::grid::TimeGrid;
+
+/// The file format of a plane scene (see the module docs).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSceneFile {
+    pub model: String,
+    #[serde(default)]
+    pub title: String,
+    pub geometry: GeometrySection,
+    pub time: PlaneTimeSection,
+    pub viscosity: MaterialSection,
+    pub elasticity: MaterialSection,
+    #[serde(default)]
+    pub body_force: VectorSection,
+    #[serde(default)]
+    pub dirichlet: Vec<DirichletSection>,
+    #[serde(default)]
+    pub traction: Vec<TractionSection>,
+    pub contact: Option<ContactSection>,
+    #[serde(default)]
+    pub initial: InitialSection,
+    #[serde(default)]
+    pub output: PlaneOutputSection,
+    #[serde(default)]
+    pub solver: PlaneSolverSection,
+}
+
+/// `[geometry]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GeometrySection {
+    #[serde(default)]
+    pub origin: [f64; 2],
+    pub size: [f64; 2],
+    pub divisions: [usize; 2],
+    #[serde(default)]
+    pub diagonal: Diagonal,
+    pub grading: Option<[f64; 2]>,
+    pub graded_towards: Option<[GradingDirection; 2]>,
+}
+
+/// Which end a graded direction refines towards.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GradingDirection {
+    Start,
+    End,
+}
+
+/// `[time]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneTimeSection {
+    pub final_time: f64,
+    pub steps: Option<usize>,
+    pub grading: Option<f64>,
+    pub times: Option<Vec<f64>>,
+    #[serde(default)]
+    pub scheme: TimeScheme,
+}
+
+/// `[viscosity]` or `[elasticity]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    pub law: String,
+    pub young: Option<f64>,
+    pub poisson: Option<f64>,
+    pub a1: Option<f64>,
+    pub a2: Option<f64>,
+    pub mu: Option<f64>,
+    pub eta: Option<f64>,
+    pub gamma: Option<f64>,
+    pub tau_c: Option<f64>,
+    pub lambda: Option<f64>,
+    pub shear: Option<f64>,
+    pub delta: Option<f64>,
+    pub eps_c: Option<f64>,
+}
+
+/// A vector of two numbers or expressions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VectorSection {
+    pub value: [FieldSpec; 2],
+}
+
+impl Default for VectorSection {
+    fn default() -> Self {
+        Self {
+            value: [FieldSpec::Number(0.0), FieldSpec::Number(0.0)],
+        }
+    }
+}
+
+/// `[[dirichlet]]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DirichletSection {
+    #[serde(default)]
+    pub sides: Vec<RectangleSide>,
+    /// Instead of `sides`: an expression of x, y selecting the boundary edges whose midpoint makes
+    /// it positive (e.g. `"1e-9 - x"` for the edges on x = 0).
+    #[serde(rename = "where")]
+    pub where_: Option<String>,
+    pub support: Support,
+}
+
+/// `[[traction]]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSection {
+    #[serde(default)]
+    pub sides: Vec<RectangleSide>,
+    #[serde(rename = "where")]
+    pub where_: Option<String>,
+    pub value: [FieldSpec; 2],
+}
+
+/// `[contact]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSection {
+    #[serde(default)]
+    pub sides: Vec<RectangleSide>,
+    #[serde(rename = "where")]
+    pub where_: Option<String>,
+    pub law: String,
+    pub beta: Option<f64>,
+    pub p0: Option<FieldSpec>,
+    pub stress: Option<FieldSpec>,
+    #[serde(default)]
+    pub integration: ContactIntegration,
+    /// The boundary source g on Γ3 (manufactured solutions).
+    pub source: Option<[FieldSpec; 2]>,
+}
+
+/// `[initial]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct InitialSection {
+    pub displacement: Option<[FieldSpec; 2]>,
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneOutputSection {
+    #[serde(default)]
+    pub times: Vec<f64>,
+}
+
+/// `[solver]`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSolverSection {
+    #[serde(default)]
+    pub path: SolverPath,
+    #[serde(default)]
+    pub start_at_first_equilibrium: bool,
+}
+
+/// A validated plane scene.
+#[derive(Debug, Clone)]
+pub struct PlaneScene {
+    pub title: String,
+    pub problem: PlaneProblem,
+    pub grid: TimeGrid,
+    pub scheme: TimeScheme,
+    pub params: PlaneParams,
+    pub output: PlaneOutputRequest,
+    pub file: PlaneSceneFile,
+}
+
+/// The boundary part of a section: its sides, or the edges whose midpoint makes `where` positive.
+fn selector(
+    prefix: &str,
+    sides: &[RectangleSide],
+    where_: Option<&String>,
+) -> Result<BoundarySelector, InputError> {
+    match (sides.is_empty(), where_) {
+        (false, None) => Ok(BoundarySelector::Sides(sides.to_vec())),
+        (true, Some(text)) => {
+            let e = crate::field::Expression::parse(&format!("{prefix}.where"), text)?;
+            Ok(BoundarySelector::Predicate(Arc::new(move |p: [f64; 2]| {
+                e.eval(p[0], p[1], 0.0) > 0.0
+            })))
+        }
+        (false, Some(_)) => Err(InputError::new(
+            format!("{prefix}.where"),
+            "(given with sides)",
+            "either sides or where",
+        )),
+        (true, None) => Err(InputError::new(
+            format!("{prefix}.sides"),
+            "(missing)",
+            "sides = [...] or where = \"expression of x, y\"",
+        )),
+    }
+}
+
+fn vector(prefix: &str, v: &[FieldSpec; 2]) -> Result<[crate::field::Field; 2], InputError> {
+    Ok([
+        v[0].to_field(&format!("{prefix}[0]"))?,
+        v[1].to_field(&format!("{prefix}[1]"))?,
+    ])
+}
+
+/// The material law of a section.
+pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, InputError> {
+    let get = |k: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            InputError::new(
+                format!("{prefix}.{k}"),
+                "(missing)",
+                format!("a value for law = \"{}\"", m.law),
+            )
+        })
+    };
+    let allowed: &[&str] = match m.law.as_str() {
+        "plane_stress" | "plane_strain" => &["young", "poisson"],
+        "isotropic" => &["a1", "a2"],
+        "paper" => &["mu", "eta"],
+        "saturating" => &["mu", "eta", "gamma", "tau_c"],
+        "softening" => &["lambda", "shear", "delta", "eps_c"],
+        other => {
+            return Err(InputError::new(
+                format!("{prefix}.law"),
+                format!("\"{other}\""),
+                "\"plane_stress\", \"plane_strain\", \"isotropic\", \"paper\", \"saturating\" or \"softening\"",
+            ))
+        }
+    };
+    let given = [
+        ("young", m.young),
+        ("poisson", m.poisson),
+        ("a1", m.a1),
+        ("a2", m.a2),
+        ("mu", m.mu),
+        ("eta", m.eta),
+        ("gamma", m.gamma),
+        ("tau_c", m.tau_c),
+        ("lambda", m.lambda),
+        ("shear", m.shear),
+        ("delta", m.delta),
+        ("eps_c", m.eps_c),
+    ];
+    for (k, v) in given {
+        if v.is_some() && !allowed.contains(&k) {
+            return Err(InputError::new(
+                format!("{prefix}.{k}"),
+                "(given)",
+                format!("no such key for law = \"{}\"", m.law),
+            ));
+        }
+    }
+    let law: Arc<dyn PlaneLaw> = match m.law.as_str() {
+        "plane_stress" => Arc::new(IsotropicLinear::plane_stress(
+            get("young", m.young)?,
+            get("poisson", m.poisson)?,
+        )),
+        "plane_strain" => Arc::new(IsotropicLinear::plane_strain(
+            get("young", m.young)?,
+            get("poisson", m.poisson)?,
+        )),
+        "isotropic" => Arc::new(IsotropicLinear {
+            a1: get("a1", m.a1)?,
+            a2: get("a2", m.a2)?,
+        }),
+        "paper" => Arc::new(IsotropicLinear::viscosity(
+            get("mu", m.mu)?,
+            get("eta", m.eta)?,
+        )),
+        "saturating" => Arc::new(SaturatingViscosity {
+            mu: get("mu", m.mu)?,
+            eta: get("eta", m.eta)?,
+            gamma: get("gamma", m.gamma)?,
+            tau_c: get("tau_c", m.tau_c)?,
+        }),
+        _ => Arc::new(SofteningElasticity {
+            lambda: get("lambda", m.lambda)?,
+            shear: get("shear", m.shear)?,
+            delta: get("delta", m.delta)?,
+            eps_c: get("eps_c", m.eps_c)?,
+        }),
+    };
+    law.validate(prefix)?;
+    Ok(law)
+}
+
+impl PlaneScene {
+    /// Parses and validates a scene from TOML text; `source_name` labels errors.
+    pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, Error> {
+        let file: PlaneSceneFile = toml::from_str(text).map_err(|e| Error::Scene {
+            source_name: source_name.to_string(),
+            message: e.to_string(),
+        })?;
+        Self::from_file(file)
+    }
+
+    /// Validates a parsed scene file.
+    pub fn from_file(file: PlaneSceneFile) -> Result<Self, Error> {
+        if file.model != "plane" {
+            return Err(InputError::new("model", &file.model, "\"plane\"").into());
+        }
+        let g = &file.geometry;
+        let grading = match (g.grading, g.graded_towards) {
+            (None, _) => [Grading::UNIFORM; 2],
+            (Some(q), towards) => {
+                let t = towards.unwrap_or([GradingDirection::Start; 2]);
+                [
+                    Grading {
+                        exponent: q[0],
+                        towards_start: t[0] == GradingDirection::Start,
+                    },
+                    Grading {
+                        exponent: q[1],
+                        towards_start: t[1] == GradingDirection::Start,
+                    },
+                ]
+            }
+        };
+        let mesh =
+            TriangleMesh::graded_rectangle(g.origin, g.size, g.divisions, g.diagonal, grading)?;
+        let contact = match &file.contact {
+            Some(c) => Some(ContactPart {
+                boundary: selector("contact", &c.sides, c.where_.as_ref())?,
+                law: Arc::new(crate::scene::foundation::foundation_law(
+                    "contact",
+                    &c.law,
+                    c.beta,
+                    c.p0.as_ref(),
+                    c.stress.as_ref(),
+                )?),
+                integration: c.integration,
+                source: c
+                    .source
+                    .as_ref()
+                    .map(|s| vector("contact.source", s))
+                    .transpose()?,
+            }),
+            None => None,
+        };
+        let problem = PlaneProblem {
+            mesh,
+            final_time: file.time.final_time,
+            viscosity: material("viscosity", &file.viscosity)?,
+            elasticity: material("elasticity", &file.elasticity)?,
+            body_force: vector("body_force.value", &file.body_force.value)?,
+            dirichlet: file
+                .dirichlet
+                .iter()
+                .enumerate()
+                .map(|(i, d)| {
+                    Ok(DirichletPart {
+                        boundary: selector(
+                            &format!("dirichlet[{i}]"),
+                            &d.sides,
+                            d.where_.as_ref(),
+                        )?,
+                        support: d.support,
+                    })
+                })
+                .collect::<Result<_, InputError>>()?,
+            traction: file
+                .traction
+                .iter()
+                .enumerate()
+                .map(|(i, t)| {
+                    Ok(TractionPart {
+                        boundary: selector(&format!("traction[{i}]"), &t.sides, t.where_.as_ref())?,
+                        traction: vector(&format!("traction[{i}].value"), &t.value)?,
+                    })
+                })
+                .collect::<Result<_, InputError>>()?,
+            contact,
+            initial_displacement: match &file.initial.displacement {
+                Some(v) => vector("initial.displacement", v)?,
+                None => [
+                    crate::field::Field::Constant(0.0),
+                    crate::field::Field::Constant(0.0),
+                ],
+            },
+        };
+        let t = &file.time;
+        let grid = match (&t.times, t.steps) {
+            (Some(times), None) => TimeGrid::from_times(times.clone())?,
+            (None, Some(steps)) => match t.grading {
+                Some(q) if q != 1.0 => TimeGrid::graded(t.final_time, steps, q)?,
+                _ => TimeGrid::uniform(t.final_time, steps)?,
+            },
+            _ => {
+                return Err(InputError::new(
+                    "time.steps",
+                    "(missing or given with time.times)",
+                    "either time.steps or time.times",
+                )
+                .into())
+            }
+        };
+        Ok(Self {
+            title: file.title.clone(),
+            problem,
+            grid,
+            scheme: t.scheme,
+            params: PlaneParams {
+                path: file.solver.path,
+                start_at_first_equilibrium: file.solver.start_at_first_equilibrium,
+                ..Default::default()
+            },
+            output: PlaneOutputRequest {
+                snapshot_times: file.output.times.clone(),
+            },
+            file,
+        })
+    }
+
+    /// The solver of this scene.
+    pub fn solver(&self) -> Result<PlaneSolver, Error> {
+        PlaneSolver::new(&self.problem, self.grid.clone(), self.scheme, self.params)
+    }
+
+    /// Solves the scene and records its outputs.
+    pub fn solve(&self) -> Result<PlaneSolution, Error> {
+        self.solver()?.solve(&self.output)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Plane scenes: the documented example parses and runs; a misspelt key, a key of another
+    //! law and a rollers scene without a way to start give errors that name the field.
+    use super::*;
+
+    const PAPER: &str = r#"
+model = "plane"
+[geometry]
+size = [6.0, 6.0]
+divisions = [6, 6]
+[time]
+final_time = 1.0
+steps = 10
+[viscosity]
+law = "paper"
+mu = 30.0
+eta = 20.0
+[elasticity]
+law = "plane_stress"
+young = 100.0
+poisson = 0.3
+[[dirichlet]]
+sides = ["left", "right"]
+support = "clamped"
+[[traction]]
+sides = ["top"]
+value = [0.0, "-10*(6 - x)*t"]
+[contact]
+sides = ["bottom"]
+law = "lubricated"
+beta = 1000.0
+p0 = 2.0
+[output]
+times = [1.0]
+"#;
+
+    #[test]
+    fn paper_scene_runs_with_the_condensed_path() {
+        let sol = PlaneScene::from_toml_str(PAPER, "x")
+            .unwrap()
+            .solve()
+            .unwrap();
+        assert_eq!(sol.stats.path, "condensed");
+        assert_eq!(sol.snapshots.len(), 1);
+        assert!(sol.snapshots[0].von_mises.iter().all(|v| v.is_finite()));
+    }
+
+    #[test]
+    fn boundary_parts_by_expression_select_the_same_edges_as_by_side() {
+        let by_where = PAPER.replace(
+            "sides = [\"left\", \"right\"]",
+            "where = \"abs(x - 3) - 2.999\"",
+        );
+        let a = PlaneScene::from_toml_str(PAPER, "x")
+            .unwrap()
+            .solve()
+            .unwrap();
+        let b = PlaneScene::from_toml_str(&by_where, "x")
+            .unwrap()
+            .solve()
+            .unwrap();
+        assert_eq!(a.snapshots[0].u, b.snapshots[0].u);
+    }
+
+    #[test]
+    fn key_of_another_law_is_named() {
+        let text = PAPER.replace("mu = 30.0", "mu = 30.0\nyoung = 3.0");
+        let err = PlaneScene::from_toml_str(&text, "x").unwrap_err();
+        assert!(err.to_string().contains("viscosity.young"), "{err}");
+    }
+
+    #[test]
+    fn rollers_without_start_variant_fail_with_no_equilibrium_at_step_1() {
+        let text = PAPER
+            .replace("support = \"clamped\"", "support = \"fix_x\"")
+            .replace("steps = 10", "steps = 100");
+        let err = PlaneScene::from_toml_str(&text, "x")
+            .unwrap()
+            .solve()
+            .unwrap_err();
+        match err {
+            Error::Solve(crate::error::SolveError::NoEquilibrium { step, .. }) => {
+                assert_eq!(step, 1)
+            }
+            other => panic!("{other}"),
+        }
+        let text = text.replace(
+            "[output]",
+            "[solver]\nstart_at_first_equilibrium = true\n[output]",
+        );
+        let sol = PlaneScene::from_toml_str(&text, "x")
+            .unwrap()
+            .solve()
+            .unwrap();
+        // 180 t < 12 N for t ≤ 0.06: the first six steps have no equilibrium.
+        assert_eq!(sol.stats.skipped_steps, vec![1, 2, 3, 4, 5, 6]);
+    }
+}
