@@ -20,15 +20,34 @@
 //!   full semismooth Newton method (nonlinear A or B); a body whose only vertical support is the
 //!   contact is handled with its free rigid motion, and a step without equilibrium is a typed
 //!   error.
+//! - [`model::dynamic`]: elastodynamic contact against a rigid foundation
+//!   (Barboteu–Danan–Sofonea 2015, "BDS"; Hauret–Le Tallec 2006, "HLT"):
+//!
+//!   ρ ü − Div Π(F) = f0,  Π = ∂_F W(F),  normal compliance / limited penetration / Signorini and
+//!   Coulomb friction with μ(u_ν) on Γ3   ((1.14)–(1.20)),
+//!
+//!   with P1 bars and plane-strain bodies, Newmark, the midpoint rule and Gonzalez's
+//!   energy-conserving scheme (1.41)–(1.43), the energy-consistent contact force (1.46) = (3.68),
+//!   the two-stage improved penalized method (1.44)–(1.45), one semismooth Newton method for all
+//!   treatments (a linear body factors once and condenses onto its contact dofs), and an energy
+//!   audit of every run: the residuals of BDS Propositions 1.1, 1.3 and HLT Proposition 3.7 per
+//!   step.
+//! - [`model::moving`]: moving continua with contacts and sliding friction — the axially moving
+//!   string with an oscillator (ideal or penalty contact), the thick string with Coulomb friction,
+//!   the particle on a rotating disc — linearized as M q̈ + C q̇ + K q = 0, with eigenvalue
+//!   verdicts (stable, divergence, flutter), branch tracking and stability maps (Hetzler 2009).
 //! - [`material`]: plane Kelvin–Voigt laws (linear isotropic, saturating viscosity, softening
-//!   elasticity) with their tangents.
-//! - [`contact::normal_law`]: the laws p_ν (2.7)–(2.9) with generalized derivatives.
-//! - [`mesh`], [`time`], [`fem`]: interval and triangle meshes, time grids, quadrature, P1
-//!   elements, symmetric sparse assembly, norms.
+//!   elasticity) with their tangents; hyperelastic laws (linear, St Venant–Kirchhoff, neo-Hooke;
+//!   bars and plane strain) with the Gonzalez discrete gradient.
+//! - [`contact`]: the laws p_ν (2.7)–(2.9) with generalized derivatives; the compliance forces of
+//!   dynamic steps; Coulomb friction coefficients μ(u_ν) (BDS (1.13)).
+//! - [`mesh`], [`time`], [`fem`]: interval and triangle meshes (rectangles, disks, annuli), time
+//!   grids, quadrature, P1 elements, symmetric sparse assembly, norms.
 //! - [`solve`]: the tridiagonal LDLᵀ, the sparse Cholesky (faer) with split passes, the
-//!   safeguarded scalar semismooth Newton.
+//!   safeguarded scalar semismooth Newton, quadratic eigenproblems (companion form, QZ for singular
+//!   masses), a small dense eigenvalue kernel for stability maps, and an RK4 integrator.
 //! - [`scene`]: TOML scenes validated into runnable models ([`scene::rod::RodScene`],
-//!   [`scene::plane::PlaneScene`]).
+//!   [`scene::plane::PlaneScene`], [`scene::dynamic::DynamicScene`], [`scene::moving`]).
 //! - [`error`]: typed errors naming fields, values, steps, times and residuals.
 //!
 //! ## Example

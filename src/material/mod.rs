@@ -6,6 +6,10 @@
 //!   plane-strain constructors.
 //! - `nonlinear`: a saturating viscosity (Lipschitz, strongly monotone) and a softening elasticity
 //!   (Lipschitz), the nonlinear A and B allowed by (2.10)–(2.11).
+//! - `hyperelastic`: hyperelastic laws Π = ∂_F W(F) for plane strain and bars (linear,
+//!   St Venant–Kirchhoff, neo-Hooke) with the Gonzalez energy-conserving discrete gradient
+//!   (Barboteu–Danan–Sofonea (1.41)–(1.43)).
 
+pub mod hyperelastic;
 pub mod nonlinear;
 pub mod plane_law;

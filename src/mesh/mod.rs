@@ -1,5 +1,7 @@
 //! Meshes. `interval`: 1D meshes of (0, L), uniform or graded. `triangle`: triangle meshes of
 //! plane bodies with tagged boundaries.
+//! `generators`: triangle meshes of a disk and an annulus.
 
+pub mod generators;
 pub mod interval;
 pub mod triangle;

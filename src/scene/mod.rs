@@ -1,12 +1,15 @@
 //! Scenes: a TOML description of one physical setup, validated into a runnable model that contains
 //! only what the scene asks for.
 //!
-//! Every scene names its `model` (`"rod"`: the quasistatic Kelvin–Voigt rod). Unknown keys are
+//! Every scene names its `model` (`"rod"`: the quasistatic Kelvin–Voigt rod; `"plane"`: the
+//! quasistatic plane body; `"dynamic"`: an elastic body against a rigid foundation). Unknown keys are
 //! errors (a misspelt key must not silently fall back to a default), and every value is checked
 //! with an error that names its field.
 
+pub mod dynamic;
 pub mod field_spec;
 pub mod foundation;
+pub mod moving;
 pub mod plane;
 pub mod rod;
 

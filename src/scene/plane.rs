@@ -249,7 +249,7 @@ pub struct PlaneScene {
 }
 
 /// The boundary part of a section: its sides, or the edges whose midpoint makes `where` positive.
-fn selector(
+pub(crate) fn selector(
     prefix: &str,
     sides: &[RectangleSide],
     where_: Option<&String>,
@@ -275,7 +275,10 @@ fn selector(
     }
 }
 
-fn vector(prefix: &str, v: &[FieldSpec; 2]) -> Result<[crate::field::Field; 2], InputError> {
+pub(crate) fn vector(
+    prefix: &str,
+    v: &[FieldSpec; 2],
+) -> Result<[crate::field::Field; 2], InputError> {
     Ok([
         v[0].to_field(&format!("{prefix}[0]"))?,
         v[1].to_field(&format!("{prefix}[1]"))?,

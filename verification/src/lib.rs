@@ -9,9 +9,11 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod case;
+pub mod dynamic;
 pub mod exact;
 pub mod gate;
 pub mod manufactured;
+pub mod moving;
 pub mod plane_errors;
 pub mod plane_study;
 pub mod plot;
@@ -19,6 +21,7 @@ pub mod report;
 pub mod rod_errors;
 pub mod rod_study;
 pub mod run;
+pub mod scene_dynamic;
 pub mod scene_plane;
 pub mod scene_run;
 pub mod stats;

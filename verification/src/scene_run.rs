@@ -28,12 +28,18 @@ pub fn run_scene(file: &Path, out: &Path) -> Result<String, String> {
     let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
     let source = file.display().to_string();
     let model = contactlab::scene::model_of(&text, &source).map_err(|e| e.to_string())?;
+    if contactlab::scene::moving::MovingScene::handles(&model) {
+        return crate::moving::scene::run_moving_scene(&text, &source, out);
+    }
     if model == "plane" {
         return crate::scene_plane::run_plane_scene(&text, &source, out);
     }
+    if model == "dynamic" {
+        return crate::scene_dynamic::run_dynamic_scene(&text, &source, out);
+    }
     if model != "rod" {
         return Err(format!(
-            "{source}: invalid model = \"{model}\": expected \"rod\" or \"plane\""
+            "{source}: invalid model = \"{model}\": expected \"rod\", \"plane\", \"dynamic\", \"moving_string\" or \"disc_particle\""
         ));
     }
     let mut table: toml::Table = text

@@ -3,9 +3,12 @@
 //! - `rod_constant_data`: the family of exact solutions of problem T1D with constant data
 //!   (derived here; the paper's two, (4.6) and (4.7), are members).
 //! - `rod_paper`: the paper's (4.6) and (4.7) written out literally, to check the family against.
+//! - `signorini_bar`: the exact 1D benchmarks of dynamic contact (periodic Signorini bar, free bar
+//!   hitting a rigid wall; `shared/spec/dynamic.md` §5).
 
 pub mod rod_constant_data;
 pub mod rod_paper;
+pub mod signorini_bar;
 
 /// u and the derivatives the rod's equations and error norms need, at one (x, t).
 #[derive(Debug, Clone, Copy, PartialEq)]

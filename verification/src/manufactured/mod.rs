@@ -4,5 +4,6 @@
 //!
 //! - `rod`: manufactured solutions of the rod problem T1D with time-dependent load and oil pressure.
 
+pub mod dynamic_plane;
 pub mod plane;
 pub mod rod;

@@ -139,6 +139,12 @@ const QUASISTATIC_KINDS: [&str; 9] = [
 /// Checks a case with its kind's format (called when a case is loaded).
 pub fn check_case(case: &Case) -> Result<(), CaseError> {
     let kind = case.header.kind.as_str();
+    if kind.starts_with("moving_") {
+        return crate::moving::check_case(case);
+    }
+    if crate::dynamic::KINDS.contains(&kind) {
+        return crate::dynamic::check_case(case);
+    }
     if QUASISTATIC_KINDS.contains(&kind) {
         CaseFile::from_case(case).map(|_| ())
     } else {
@@ -146,7 +152,11 @@ pub fn check_case(case: &Case) -> Result<(), CaseError> {
             path: case.path.display().to_string(),
             field: "kind".into(),
             value: kind.into(),
-            expected: format!("one of {}", QUASISTATIC_KINDS.join(", ")),
+            expected: format!(
+                "one of {}, {}",
+                QUASISTATIC_KINDS.join(", "),
+                crate::dynamic::KINDS.join(", ")
+            ),
         })
     }
 }
@@ -155,19 +165,12 @@ pub fn check_case(case: &Case) -> Result<(), CaseError> {
 pub fn run_case(case: &Case, ctx: &RunContext) -> CaseReport {
     let start = Instant::now();
     let mut report = CaseReport::new(&case.header, ctx.metadata.clone());
-    let outcome = match CaseFile::from_case(case) {
-        Err(e) => Err(e.to_string()),
-        Ok(file) => match file.kind {
-            CaseKind::Convergence => convergence::run(&file, ctx, &mut report),
-            CaseKind::Stability => stability::run(&file, ctx, &mut report),
-            CaseKind::Extremes => extremes::run(&file, ctx, &mut report),
-            CaseKind::WorkPrecision => work_precision::run(&file, ctx, &mut report),
-            CaseKind::Performance => performance::run(&file, ctx, &mut report),
-            CaseKind::PaperTest2d => paper_test_2d::run(&file, ctx, &mut report),
-            CaseKind::PlaneStability => plane_stability::run(&file, ctx, &mut report),
-            CaseKind::PlanePaths => plane_paths::run(&file, ctx, &mut report),
-            CaseKind::PlanePerformance => plane_performance::run(&file, ctx, &mut report),
-        },
+    let outcome = if crate::dynamic::KINDS.contains(&case.header.kind.as_str()) {
+        crate::dynamic::run_case(case, ctx, &mut report)
+    } else if case.header.kind.starts_with("moving_") {
+        crate::moving::run_case(case, ctx, &mut report)
+    } else {
+        run_quasistatic(case, ctx, &mut report)
     };
     if let Err(message) = outcome {
         report.failure = Some(message);
@@ -175,4 +178,22 @@ pub fn run_case(case: &Case, ctx: &RunContext) -> CaseReport {
     report.wall_seconds = start.elapsed().as_secs_f64();
     report.conclude();
     report
+}
+
+/// Runs a case of the quasistatic format ([`CaseFile`]).
+fn run_quasistatic(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+    match CaseFile::from_case(case) {
+        Err(e) => Err(e.to_string()),
+        Ok(file) => match file.kind {
+            CaseKind::Convergence => convergence::run(&file, ctx, report),
+            CaseKind::Stability => stability::run(&file, ctx, report),
+            CaseKind::Extremes => extremes::run(&file, ctx, report),
+            CaseKind::WorkPrecision => work_precision::run(&file, ctx, report),
+            CaseKind::Performance => performance::run(&file, ctx, report),
+            CaseKind::PaperTest2d => paper_test_2d::run(&file, ctx, report),
+            CaseKind::PlaneStability => plane_stability::run(&file, ctx, report),
+            CaseKind::PlanePaths => plane_paths::run(&file, ctx, report),
+            CaseKind::PlanePerformance => plane_performance::run(&file, ctx, report),
+        },
+    }
 }

@@ -1,0 +1,69 @@
+//! The elastic body of a dynamic problem after space discretization (P1 elements): its free dofs,
+//! mass matrix, stored energy, internal forces with their tangents, the Gonzalez discrete-gradient
+//! forces, and external loads.
+//!
+//! Semi-discrete equations (Barboteu–Danan–Sofonea, "BDS", (1.15)–(1.17) in P1 form):
+//!
+//!   M ü + F_int(u) = f(t) + ξ(u),   F_int(u) = ∇_u 𝒲(u),   𝒲(u) = Σ_e |e| W(F_e(u)),
+//!
+//! with M the consistent (or lumped) mass, W the stored-energy density, f the body forces and
+//! tractions, and ξ the contact forces of the foundation.
+
+use std::fmt::Debug;
+
+use crate::fem::sparse::SymmetricPattern;
+
+/// A space-discretized elastic body. Vectors hold the free dofs only (Γ1 dofs are held at zero).
+pub trait ElasticBody: Send + Sync + Debug {
+    /// Number of free dofs.
+    fn dofs(&self) -> usize;
+
+    /// The sparsity pattern shared by the mass and the tangent stiffness.
+    fn pattern(&self) -> &SymmetricPattern;
+
+    /// The mass matrix (values on [`ElasticBody::pattern`]).
+    fn mass(&self) -> &[f64];
+
+    /// Whether F_int is linear (small-strain law): then the stiffness is constant and a step
+    /// operator is factored once.
+    fn is_linear(&self) -> bool;
+
+    /// The constant stiffness K (values on the pattern) of a linear body.
+    fn linear_stiffness(&self) -> Option<&[f64]>;
+
+    /// 𝒲(u) = Σ_e |e| W(F_e); +∞ for an inadmissible state (neo-Hooke with det F ≤ 0).
+    fn stored_energy(&self, u: &[f64]) -> f64;
+
+    /// F_int(u) into `f`; `false` (and `f` unspecified) for an inadmissible state.
+    fn internal_force(&self, u: &[f64], f: &mut [f64]) -> bool;
+
+    /// Adds `scale` · K_T(u) to `values` (on the pattern).
+    fn add_tangent(&self, u: &[f64], scale: f64, values: &mut [f64]);
+
+    /// The discrete-gradient force F^algo(u0, u1) = Σ_e |e| Π^algo(F_e(u0), F_e(u1)) : ∇φ (BDS
+    /// (1.41)–(1.42)), with F^algo(u0, u1)·(u1 − u0) = 𝒲(u1) − 𝒲(u0) (BDS (1.43)); `false` for an
+    /// inadmissible state.
+    fn discrete_gradient_force(&self, u0: &[f64], u1: &[f64], f: &mut [f64]) -> bool;
+
+    /// Adds `scale` · sym(∂F^algo/∂u1) (u0, u1) to `values`: the symmetric part of the exact
+    /// derivative (a symmetric Newton tangent; the skew part is dropped).
+    fn add_discrete_gradient_tangent(&self, u0: &[f64], u1: &[f64], scale: f64, values: &mut [f64]);
+
+    /// The external load f(t) (body forces and tractions) into `out`.
+    fn load_into(&self, t: f64, out: &mut [f64]);
+
+    /// Whether the load depends on time.
+    fn load_depends_on_time(&self) -> bool;
+
+    /// Whether the load is identically zero.
+    fn load_is_zero(&self) -> bool;
+
+    /// The longitudinal wave speed c at rest.
+    fn wave_speed(&self) -> f64;
+
+    /// The smallest element size (for the wave-crossing time h_min / c).
+    fn h_min(&self) -> f64;
+
+    /// A short description of the body for reports.
+    fn describe(&self) -> String;
+}

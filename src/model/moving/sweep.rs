@@ -1,0 +1,54 @@
+//! One-parameter sweeps: the spectrum, the verdict and the eigenvalue branches at every value of
+//! a parameter (eigenvalue loci, Campbell diagrams, stability boundaries).
+
+use faer::c64;
+
+use crate::model::moving::branches::{track_branches, EigenBranches};
+use crate::model::moving::error::MovingError;
+use crate::model::moving::stability::{assess, StabilityAssessment, VerdictParams};
+use crate::model::moving::stability_map::{parallel_rows, GridAxis, StringWorkspace};
+use crate::model::moving::string_data::MovingStringData;
+use crate::model::moving::string_model::MovingStringModel;
+use crate::solve::quadratic_eigen::QuadraticEigenParams;
+
+/// The result of a sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sweep {
+    pub axis: GridAxis,
+    /// The eigenvalues at every point, in the solver's order.
+    pub spectra: Vec<Vec<c64>>,
+    pub assessments: Vec<StabilityAssessment>,
+    /// The tracked branches.
+    pub branches: EigenBranches,
+}
+
+/// Sweeps `axis` from `base` (every point parallel, deterministic).
+pub fn string_sweep(
+    model: &MovingStringModel,
+    base: &MovingStringData,
+    axis: &GridAxis,
+    eigen: QuadraticEigenParams,
+    verdict: &VerdictParams,
+    threads: usize,
+) -> Result<Sweep, MovingError> {
+    verdict.validate()?;
+    base.validate()?;
+    let (spectra, _) = parallel_rows(
+        axis.values.len(),
+        threads,
+        || StringWorkspace::new(model, base),
+        |i, ws: &mut StringWorkspace| -> Result<Vec<c64>, MovingError> {
+            let mut d = *base;
+            axis.parameter.set(&mut d, axis.values[i])?;
+            Ok(ws.eigenvalues(model, &d, eigen)?.to_vec())
+        },
+    )?;
+    let assessments = spectra.iter().map(|s| assess(s, verdict)).collect();
+    let branches = track_branches(&axis.values, &spectra)?;
+    Ok(Sweep {
+        axis: axis.clone(),
+        spectra,
+        assessments,
+        branches,
+    })
+}

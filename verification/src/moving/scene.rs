@@ -1,0 +1,228 @@
+//! `verify scene` for moving-continuum scenes (`model = "moving_string"` or `"disc_particle"`,
+//! format in `contactlab::scene::moving`): runs the analysed point, every sweep and the map, and
+//! writes into the output directory
+//!
+//! - `eigenvalues.json`: the point's data, eigenvalues [Re, Im] (and eigenvectors when asked),
+//!   the verdict with its tolerance, the solver's statistics;
+//! - `sweep_<i>.json`: for each sweep, the parameter values, every spectrum, the verdicts and
+//!   growth rates, and the tracked branches;
+//! - `map.json`: the grid, and per point the verdict, max Re λ and the critical eigenvalue;
+//! - SVG plots: the spectrum, the loci and Campbell diagram of each sweep, the map.
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use contactlab::model::moving::stability::{StabilityAssessment, Verdict};
+use contactlab::model::moving::stability_map::StabilityMap;
+use contactlab::scene::moving::{MovingScene, StringSceneResult};
+
+use crate::moving::plots::{loci_figures, map_figure, root_locus, upper_branches};
+use crate::plot::{write_panels_svg, write_svg, Figure, Series};
+
+#[derive(Serialize)]
+struct PointJson<'a> {
+    title: &'a str,
+    coordinates: &'a [String],
+    control_parameter: f64,
+    eigenvalues: &'a [[f64; 2]],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    eigenvectors: Option<&'a Vec<Vec<[f64; 2]>>>,
+    assessment: &'a StabilityAssessment,
+    stats: &'a contactlab::solve::quadratic_eigen::QuadraticEigenStats,
+}
+
+#[derive(Serialize)]
+struct SweepJson<'a> {
+    parameter: &'static str,
+    values: &'a [f64],
+    verdicts: Vec<Verdict>,
+    max_real_part: Vec<f64>,
+    spectra: Vec<Vec<[f64; 2]>>,
+    branches: Vec<Vec<[f64; 2]>>,
+}
+
+/// Runs a moving scene and writes its files; returns a one-line summary.
+pub fn run_moving_scene(text: &str, source: &str, out: &Path) -> Result<String, String> {
+    let scene = MovingScene::from_toml_str(text, source).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let write = |name: &str, json: String| {
+        std::fs::write(out.join(name), json)
+            .map_err(|e| format!("{}: {e}", out.join(name).display()))
+    };
+    let svg = |name: &str, f: &Figure| write_svg(f, &out.join(name)).map_err(|e| e.to_string());
+    match scene {
+        MovingScene::String(s) => {
+            let r = s.run().map_err(|e| format!("{source}: {e}"))?;
+            let title = if s.title.is_empty() {
+                source.to_string()
+            } else {
+                s.title.clone()
+            };
+            write(
+                "eigenvalues.json",
+                serde_json::to_string_pretty(&PointJson {
+                    title: &title,
+                    coordinates: &r.coordinates,
+                    control_parameter: r.control_parameter,
+                    eigenvalues: &r.eigenvalues,
+                    eigenvectors: r.eigenvectors.as_ref(),
+                    assessment: &r.assessment,
+                    stats: &r.stats,
+                })
+                .map_err(|e| e.to_string())?,
+            )?;
+            svg("spectrum.svg", &spectrum_figure(&title, &r))?;
+            for (i, sw) in r.sweeps.iter().enumerate() {
+                let j = SweepJson {
+                    parameter: sw.axis.parameter.key(),
+                    values: &sw.axis.values,
+                    verdicts: sw.assessments.iter().map(|a| a.verdict).collect(),
+                    max_real_part: sw.assessments.iter().map(|a| a.max_real_part).collect(),
+                    spectra: sw
+                        .spectra
+                        .iter()
+                        .map(|s| s.iter().map(|l| [l.re, l.im]).collect())
+                        .collect(),
+                    branches: sw
+                        .branches
+                        .branches
+                        .iter()
+                        .map(|b| b.iter().map(|l| [l.re, l.im]).collect())
+                        .collect(),
+                };
+                write(
+                    &format!("sweep_{i}.json"),
+                    serde_json::to_string_pretty(&j).map_err(|e| e.to_string())?,
+                )?;
+                let chosen = upper_branches(&sw.branches, 8);
+                let sym = sw.axis.parameter.symbol();
+                let (re, im) = loci_figures(&title, sym, &sw.branches, &chosen, &[]);
+                let rl = root_locus(&format!("{title}, {sym} sweep"), &sw.branches, &chosen);
+                write_panels_svg(&[im, re, rl], 3, &out.join(format!("sweep_{i}.svg")))
+                    .map_err(|e| e.to_string())?;
+            }
+            if let Some(map) = &r.map {
+                write(
+                    "map.json",
+                    serde_json::to_string(&map_json(map)).map_err(|e| e.to_string())?,
+                )?;
+                svg(
+                    "map.svg",
+                    &map_figure(
+                        &format!("{title}: stability map"),
+                        map.x.parameter.symbol(),
+                        map.y.parameter.symbol(),
+                        map,
+                        60,
+                        false,
+                    ),
+                )?;
+            }
+            Ok(format!(
+                "{source}: {} at the scene's point (max Re λ = {:.6e}, tolerance {:.1e}), {} eigenvalues{}{}",
+                r.assessment.verdict.name(),
+                r.assessment.max_real_part,
+                r.assessment.tolerance,
+                r.eigenvalues.len(),
+                if r.sweeps.is_empty() { String::new() } else { format!(", {} sweep(s)", r.sweeps.len()) },
+                r.map.as_ref().map_or(String::new(), |m| format!(
+                    ", map {} × {}: {} stable, {} marginal, {} divergence, {} flutter",
+                    m.x.values.len(),
+                    m.y.values.len(),
+                    m.count(Verdict::Stable),
+                    m.count(Verdict::Marginal),
+                    m.count(Verdict::Divergence),
+                    m.count(Verdict::Flutter)
+                ))
+            ))
+        }
+        MovingScene::Disc(d) => {
+            let r = d.run().map_err(|e| format!("{source}: {e}"))?;
+            write(
+                "eigenvalues.json",
+                serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?,
+            )?;
+            for (i, sw) in r.sweeps.iter().enumerate() {
+                let f = Figure::new(format!(
+                    "{}: friction damping against {}",
+                    d.title,
+                    sw.parameter.key()
+                ))
+                .x_label(sw.parameter.key())
+                .y_label("damping")
+                .log_log()
+                .series(
+                    Series::line(
+                        "μN/(|Ω| r0)",
+                        sw.values
+                            .iter()
+                            .zip(&sw.points)
+                            .map(|(v, p)| (*v, p.friction_damping)),
+                    )
+                    .color(6)
+                    .dashed(),
+                )
+                .series(
+                    Series::markers(
+                        "−m(λ₁ + λ₂)",
+                        sw.values
+                            .iter()
+                            .zip(&sw.points)
+                            .map(|(v, p)| (*v, p.recovered_damping)),
+                    )
+                    .color(1),
+                );
+                svg(&format!("sweep_{i}.svg"), &f)?;
+            }
+            Ok(format!(
+                "{source}: {} (damping μN/(Ω r0) = {:.6e}, recovered {:.6e}), {} sweep(s)",
+                r.point.assessment.verdict.name(),
+                r.point.friction_damping,
+                r.point.recovered_damping,
+                r.sweeps.len()
+            ))
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct MapJson<'a> {
+    x_parameter: &'static str,
+    x: &'a [f64],
+    y_parameter: &'static str,
+    y: &'a [f64],
+    /// Row-major (point (ix, iy) at iy·nx + ix).
+    verdict: Vec<&'static str>,
+    max_real_part: Vec<f64>,
+    critical_eigenvalue: Vec<[f64; 2]>,
+    tolerance: Vec<f64>,
+}
+
+fn map_json(m: &StabilityMap) -> MapJson<'_> {
+    MapJson {
+        x_parameter: m.x.parameter.key(),
+        x: &m.x.values,
+        y_parameter: m.y.parameter.key(),
+        y: &m.y.values,
+        verdict: m.points.iter().map(|a| a.verdict.name()).collect(),
+        max_real_part: m.points.iter().map(|a| a.max_real_part).collect(),
+        critical_eigenvalue: m
+            .points
+            .iter()
+            .map(|a| [a.critical_re, a.critical_im])
+            .collect(),
+        tolerance: m.points.iter().map(|a| a.tolerance).collect(),
+    }
+}
+
+fn spectrum_figure(title: &str, r: &StringSceneResult) -> Figure {
+    Figure::new(format!(
+        "{title}: eigenvalues ({})",
+        r.assessment.verdict.name()
+    ))
+    .x_label("Re λ")
+    .y_label("Im λ")
+    .series(Series::markers("λ", r.eigenvalues.iter().map(|l| (l[0], l[1]))).color(0))
+    .vertical_line(0.0, "Re λ = 0")
+}
