@@ -393,6 +393,36 @@ impl SweepSpec {
     }
 }
 
+/// Checks the names a rate or ceiling gate refers to: a `[[sweep]]`, a `[[family]]` the sweep
+/// runs and a measured error; `field` names the gate in errors. The sweep on success.
+fn check_gate_names<'a>(
+    field: &str,
+    (sweep, family, error): (&str, &str, &str),
+    sweeps: &'a [SweepSpec],
+    families: &[FamilySpec],
+    errors: &[&str],
+) -> Result<&'a SweepSpec, (String, String, String)> {
+    let bad = |f: &str, v: String, e: String| Err((format!("{field}.{f}"), v, e));
+    let Some(found) = sweeps.iter().find(|s| s.name == sweep) else {
+        return bad("sweep", sweep.into(), "the name of a [[sweep]]".into());
+    };
+    if !families.iter().any(|f| f.name == family) || !found.runs(family) {
+        return bad(
+            "family",
+            family.into(),
+            format!("a [[family]] run by sweep `{}`", found.name),
+        );
+    }
+    if !errors.contains(&error) {
+        return bad(
+            "error",
+            error.into(),
+            format!("one of {}", errors.join(", ")),
+        );
+    }
+    Ok(found)
+}
+
 /// `[[gate]]`: a rate gate on one error of one family along one sweep (the quasistatic
 /// [`RateGateSpec`] with a family instead of a scheme).
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -442,27 +472,13 @@ impl RateGate {
         errors: &[&str],
     ) -> Result<(), (String, String, String)> {
         let bad = |f: &str, v: String, e: String| Err((format!("{field}.{f}"), v, e));
-        let Some(sweep) = sweeps.iter().find(|s| s.name == self.sweep) else {
-            return bad(
-                "sweep",
-                self.sweep.clone(),
-                "the name of a [[sweep]]".into(),
-            );
-        };
-        if !families.iter().any(|f| f.name == self.family) || !sweep.runs(&self.family) {
-            return bad(
-                "family",
-                self.family.clone(),
-                format!("a [[family]] run by sweep `{}`", sweep.name),
-            );
-        }
-        if !errors.contains(&self.error.as_str()) {
-            return bad(
-                "error",
-                self.error.clone(),
-                format!("one of {}", errors.join(", ")),
-            );
-        }
+        check_gate_names(
+            field,
+            (&self.sweep, &self.family, &self.error),
+            sweeps,
+            families,
+            errors,
+        )?;
         if self.against == Against::HPlusK {
             return bad("against", "h_plus_k".into(), "h or k".into());
         }
@@ -511,27 +527,13 @@ impl CeilingGate {
         errors: &[&str],
     ) -> Result<(), (String, String, String)> {
         let bad = |f: &str, v: String, e: String| Err((format!("{field}.{f}"), v, e));
-        let Some(sweep) = sweeps.iter().find(|s| s.name == self.sweep) else {
-            return bad(
-                "sweep",
-                self.sweep.clone(),
-                "the name of a [[sweep]]".into(),
-            );
-        };
-        if !families.iter().any(|f| f.name == self.family) || !sweep.runs(&self.family) {
-            return bad(
-                "family",
-                self.family.clone(),
-                format!("a [[family]] run by sweep `{}`", sweep.name),
-            );
-        }
-        if !errors.contains(&self.error.as_str()) {
-            return bad(
-                "error",
-                self.error.clone(),
-                format!("one of {}", errors.join(", ")),
-            );
-        }
+        let sweep = check_gate_names(
+            field,
+            (&self.sweep, &self.family, &self.error),
+            sweeps,
+            families,
+            errors,
+        )?;
         if let Some(m) = self.elements {
             if !sweep.elements.contains(&m) {
                 return bad(

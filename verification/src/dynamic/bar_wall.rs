@@ -19,28 +19,23 @@
 //!
 //! A run whose contact has not ended by T (force at the last step) is an error.
 
-use std::time::Instant;
-
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use contactlab::model::dynamic::audit::EnergyAudit;
 use contactlab::model::dynamic::bar::BarSupports;
 use contactlab::model::dynamic::body::ElasticBody;
 use contactlab::model::dynamic::contact_model::{BarEnd, ContactModel};
-use contactlab::model::dynamic::scheme::DynamicScheme;
 use contactlab::model::dynamic::solver::{DynamicParams, DynamicProblem, DynamicSolver, StepView};
 
 use crate::case::{Case, CaseError, Tier};
-use crate::dynamic::audit::{audit_gate, plot_audits, AuditRun};
 use crate::dynamic::bar_common::{
-    ceiling_gates, check_common, convergence_figures, cost_and_audit_table, errors_table,
-    group_outcomes, rate_gates, worst_summary, BarSetup, CeilingGate, FamilySpec, Job,
-    LevelOutcome, RateGate, SweepSpec,
+    check_common, BarSetup, CeilingGate, FamilySpec, Job, RateGate, SweepOutcome, SweepSpec,
+};
+use crate::dynamic::bar_runs::{
+    exact_history, history_panel, plot_convergence, plot_shown_audits, report_runs, run_jobs,
+    solve_timed, step_impulse, RunOutput, ShownRun,
 };
 use crate::exact::signorini_bar::BarWallImpact;
-use crate::gate::GateVerdict;
-use crate::plot::{Figure, Series};
+use crate::moving::format::parse;
 use crate::report::case_report::{CaseReport, Table};
 use crate::run::RunContext;
 
@@ -130,14 +125,7 @@ impl BarWallCase {
     /// Parses and checks a case of this kind.
     pub fn from_case(case: &Case) -> Result<Self, CaseError> {
         let path = case.path.display().to_string();
-        let file: Self = case
-            .table
-            .clone()
-            .try_into()
-            .map_err(|e: toml::de::Error| CaseError::Read {
-                path: path.clone(),
-                message: e.to_string(),
-            })?;
+        let file: Self = parse(case)?;
         let invalid = |field: &str, value: f64, expected: &str| CaseError::Invalid {
             path: path.clone(),
             field: field.into(),
@@ -206,13 +194,6 @@ struct History {
     centre_velocity: Vec<f64>,
 }
 
-/// One run's outcome (histories and audit only when recorded).
-struct RunOutput {
-    level: LevelOutcome,
-    history: Option<History>,
-    audit: Option<EnergyAudit>,
-}
-
 /// The running measurements of one run.
 #[derive(Debug, Default)]
 struct Accumulator {
@@ -243,7 +224,7 @@ fn run_level(
     steps: usize,
     final_time: f64,
     record: bool,
-) -> Result<RunOutput, String> {
+) -> Result<RunOutput<History>, String> {
     let exact = bar.exact();
     let setup = bar.setup();
     let body = setup.body(elements, family.mass)?;
@@ -271,18 +252,13 @@ fn run_level(
     let mass = exact.mass();
     let mut acc = Accumulator::default();
     let mut history = record.then(History::default);
-    let mut observer_seconds = 0.0;
-    let mut observer = |view: &StepView<'_>| {
-        let start = Instant::now();
+    let label = format!("{} (M = {elements}, N = {steps})", family.name);
+    let (solution, solver_seconds) = solve_timed(&solver, &label, |view: &StepView<'_>| {
         let t = view.time;
         // every node is free: the free-dof vector is the nodal vector
         let force = -sign * view.forces[0].force_nd;
         if view.step > 0 {
-            acc.impulse += if midpoint {
-                k * force
-            } else {
-                0.5 * k * (force + acc.previous_force)
-            };
+            acc.impulse += step_impulse(midpoint, k, force, acc.previous_force);
             if force > 0.0 {
                 acc.first_contact.get_or_insert(view.step);
                 acc.last_contact = Some(view.step);
@@ -306,15 +282,7 @@ fn run_level(
             hist.contact_force.push(force);
             hist.centre_velocity.push(v_cm);
         }
-        if view.step > 0 {
-            // the initial call falls in the solver's setup, not in its loop
-            observer_seconds += start.elapsed().as_secs_f64();
-        }
-    };
-    let label = format!("{} (M = {elements}, N = {steps})", family.name);
-    let solution = solver
-        .solve_with(&mut observer)
-        .map_err(|e| format!("{label}: {e}"))?;
+    })?;
     if acc.last_force > 0.0 {
         return Err(format!(
             "{label}: the bar is still in contact at T = {final_time}"
@@ -349,24 +317,15 @@ fn run_level(
             "penetration_max",
             acc.penetration.max(0.0) / (bar.speed * tc),
         ),
-    ]
-    .iter()
-    .map(|(n, v)| (n.to_string(), *v))
-    .collect();
-    Ok(RunOutput {
-        level: LevelOutcome {
-            elements,
-            steps,
-            h,
-            k,
-            errors,
-            summary: solution.audit.summary(),
-            solver_seconds: (solution.stats.loop_seconds - observer_seconds).max(0.0),
-            stats: solution.stats.clone(),
-        },
+    ];
+    Ok(RunOutput::new(
+        (elements, steps, h, k),
+        &errors,
+        solution,
+        solver_seconds,
         history,
-        audit: record.then_some(solution.audit),
-    })
+        record,
+    ))
 }
 
 /// Runs the case.
@@ -381,53 +340,25 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         (file.show.elements, file.show.courant),
         |_| true,
     );
-    let bar = ctx.progress_bar(jobs.len() as u64, &file.id);
-    let results: Vec<Result<RunOutput, String>> = jobs
-        .par_iter()
-        .map(|j| {
-            let r = run_level(
-                &file.bar,
-                &file.families[j.family],
-                j.elements,
-                j.steps,
-                j.final_time,
-                j.sweep.is_none(),
-            );
-            bar.inc(1);
-            r
-        })
-        .collect();
-    bar.finish_and_clear();
-    let mut levels = Vec::with_capacity(results.len());
-    let mut shown: Vec<(usize, History, EnergyAudit)> = Vec::new();
-    for (job, result) in jobs.iter().zip(results) {
-        let out = result?;
-        if let (None, Some(h), Some(a)) = (job.sweep, out.history, out.audit) {
-            shown.push((job.family, h, a));
-        }
-        levels.push(out.level);
-    }
-    let outcomes = group_outcomes(&jobs, levels, &file.sweeps, &file.families);
-    let mut gates: Vec<GateVerdict> = rate_gates(&file.gates, &outcomes);
-    gates.extend(ceiling_gates(&file.ceilings, &outcomes));
-    for f in &file.families {
-        if let Some(w) = worst_summary(&outcomes, &f.name) {
-            gates.push(audit_gate(
-                &format!("energy audit: {}", f.name),
-                f.audit_checks(&w),
-                &f.audit_note(),
-            ));
-        }
-    }
-    report.gates = gates;
-    report.tables.push(errors_table(
+    let (outcomes, shown) = run_jobs(ctx, &file.id, &jobs, &file.sweeps, &file.families, |j| {
+        run_level(
+            &file.bar,
+            &file.families[j.family],
+            j.elements,
+            j.steps,
+            j.final_time,
+            j.sweep.is_none(),
+        )
+    })?;
+    report_runs(
+        report,
         "every run: the measured relative errors",
         &ERRORS,
+        &file.families,
+        &file.gates,
+        &file.ceilings,
         &outcomes,
-    ));
-    report
-        .tables
-        .push(cost_and_audit_table(&file.families, &outcomes));
+    );
     report.tables.push(exact_table(&file));
     plots(&file, ctx, report, &outcomes, &shown)
 }
@@ -466,8 +397,8 @@ fn plots(
     file: &BarWallCase,
     ctx: &RunContext,
     report: &mut CaseReport,
-    outcomes: &[crate::dynamic::bar_common::SweepOutcome],
-    shown: &[(usize, History, EnergyAudit)],
+    outcomes: &[SweepOutcome],
+    shown: &[ShownRun<History>],
 ) -> Result<(), String> {
     let exact = file.bar.exact();
     let level = {
@@ -476,43 +407,27 @@ fn plots(
         let (m, n) = s.levels(setup.length, setup.wave_speed(), file.final_time)[0];
         format!("M = {m}, N = {n}")
     };
-    for (group, newmark) in [("midpoint", false), ("newmark", true)] {
-        let runs: Vec<AuditRun<'_>> = shown
-            .iter()
-            .filter(|(f, _, _)| (file.families[*f].scheme == DynamicScheme::Newmark) == newmark)
-            .map(|(f, _, audit)| AuditRun {
-                label: file.families[*f].name.clone(),
-                audit,
-            })
-            .collect();
-        if !runs.is_empty() {
-            plot_audits(
-                ctx,
-                report,
-                &format!("audit_{group}"),
-                &format!("{} ({level}), {group} runs", file.id),
-                &runs,
-                Some(exact.energy()),
-            )?;
-        }
-    }
-    let fine: Vec<f64> = (0..=4000)
-        .map(|i| file.final_time * i as f64 / 4000.0)
-        .collect();
+    plot_shown_audits(
+        ctx,
+        report,
+        &file.id,
+        &level,
+        &file.families,
+        shown,
+        exact.energy(),
+    )?;
     let columns = shown.len().clamp(1, 3);
     let panels = |pick: &dyn Fn(&History) -> &Vec<f64>, y: &str, f: &dyn Fn(f64) -> f64| {
         shown
             .iter()
-            .map(|(fam, h, _)| {
-                Figure::new(file.families[*fam].name.clone())
-                    .x_label("t")
-                    .y_label(y)
-                    .series(Series::from_xy("computed", &h.time, pick(h)).color(1))
-                    .series(
-                        Series::line("exact", fine.iter().map(|&t| (t, f(t))))
-                            .color(0)
-                            .dashed(),
-                    )
+            .map(|o| {
+                history_panel(
+                    &file.families[o.family].name,
+                    y,
+                    &o.history.time,
+                    pick(&o.history),
+                    exact_history("exact", file.final_time, 4000, f),
+                )
             })
             .collect::<Vec<_>>()
     };
@@ -538,10 +453,7 @@ fn plots(
         }),
         columns,
     )?;
-    for (name, fig) in convergence_figures(&file.id, &file.sweeps, &file.gates, outcomes) {
-        ctx.plot(report, &name, &fig)?;
-    }
-    Ok(())
+    plot_convergence(ctx, report, &file.id, &file.sweeps, &file.gates, outcomes)
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 
 pub mod audit;
 pub mod bar_common;
+pub mod bar_runs;
 pub mod bar_wall;
 pub mod extremes;
 pub mod impact;

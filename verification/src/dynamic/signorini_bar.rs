@@ -22,27 +22,24 @@
 //! between two families on the shown level (`[[identical]]`, e.g. the HLT tilted force against
 //! the energy-consistent force, which coincide against a plane wall) decide the case.
 
-use std::time::Instant;
-
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use contactlab::model::dynamic::audit::EnergyAudit;
 use contactlab::model::dynamic::bar::BarSupports;
 use contactlab::model::dynamic::body::ElasticBody;
 use contactlab::model::dynamic::contact_model::{BarEnd, ContactModel};
-use contactlab::model::dynamic::scheme::DynamicScheme;
 use contactlab::model::dynamic::solver::{DynamicParams, DynamicProblem, DynamicSolver, StepView};
 
 use crate::case::{Case, CaseError, Tier};
-use crate::dynamic::audit::{audit_gate, plot_audits, AuditRun};
 use crate::dynamic::bar_common::{
-    ceiling_gates, check_common, convergence_figures, cost_and_audit_table, errors_table,
-    group_outcomes, rate_gates, worst_summary, BarSetup, CeilingGate, FamilySpec, Job,
-    LevelOutcome, RateGate, SweepOutcome, SweepSpec,
+    check_common, BarSetup, CeilingGate, FamilySpec, Job, RateGate, SweepOutcome, SweepSpec,
+};
+use crate::dynamic::bar_runs::{
+    exact_history, history_panel, plot_convergence, plot_shown_audits, report_runs, run_jobs,
+    solve_timed, step_impulse, RunOutput, ShownRun,
 };
 use crate::exact::signorini_bar::{PeriodicSignoriniBar, ENERGY};
 use crate::gate::{Check, GateVerdict};
+use crate::moving::format::parse;
 use crate::plot::{Figure, Series};
 use crate::report::case_report::{CaseReport, Table};
 use crate::run::RunContext;
@@ -125,14 +122,7 @@ impl SignoriniBarCase {
     /// Parses and checks a case of this kind.
     pub fn from_case(case: &Case) -> Result<Self, CaseError> {
         let path = case.path.display().to_string();
-        let file: Self = case
-            .table
-            .clone()
-            .try_into()
-            .map_err(|e: toml::de::Error| CaseError::Read {
-                path: path.clone(),
-                message: e.to_string(),
-            })?;
+        let file: Self = parse(case)?;
         let invalid = |field: &str, value: String, expected: &str| CaseError::Invalid {
             path: path.clone(),
             field: field.into(),
@@ -212,13 +202,6 @@ struct History {
     final_nodal: Vec<f64>,
 }
 
-/// One run's outcome (histories and audit only when recorded).
-struct RunOutput {
-    level: LevelOutcome,
-    history: Option<History>,
-    audit: Option<EnergyAudit>,
-}
-
 /// The running maxima of one run.
 #[derive(Debug, Default)]
 struct Accumulator {
@@ -241,7 +224,7 @@ fn run_level(
     steps: usize,
     final_time: f64,
     record: bool,
-) -> Result<RunOutput, String> {
+) -> Result<RunOutput<History>, String> {
     let exact = PeriodicSignoriniBar;
     let body = BAR.body(elements, family.mass)?;
     let h = BAR.length / elements as f64;
@@ -272,9 +255,8 @@ fn run_level(
     let mut acc = Accumulator::default();
     let mut history = record.then(History::default);
     let (mut un, mut vn) = (vec![0.0; elements + 1], vec![0.0; elements + 1]);
-    let mut observer_seconds = 0.0;
-    let mut observer = |view: &StepView<'_>| {
-        let start = Instant::now();
+    let label = format!("{} (M = {elements}, N = {steps})", family.name);
+    let (solution, solver_seconds) = solve_timed(&solver, &label, |view: &StepView<'_>| {
         let t = view.time;
         fill_nodal(&body, view.displacement, &mut un);
         fill_nodal(&body, view.velocity, &mut vn);
@@ -294,11 +276,7 @@ fn run_level(
             .max((energy + view.record.penalty - ENERGY).abs());
         let force = -sign * view.forces[0].force_nd;
         if view.step > 0 {
-            acc.impulse += if midpoint {
-                k * force
-            } else {
-                0.5 * k * (force + acc.previous_force)
-            };
+            acc.impulse += step_impulse(midpoint, k, force, acc.previous_force);
         }
         acc.previous_force = force;
         acc.impulse_max = acc
@@ -311,14 +289,7 @@ fn run_level(
             hist.energy.push(energy);
             hist.trajectory.extend_from_slice(&un);
         }
-        if view.step > 0 {
-            // the initial call falls in the solver's setup, not in its loop
-            observer_seconds += start.elapsed().as_secs_f64();
-        }
-    };
-    let solution = solver
-        .solve_with(&mut observer)
-        .map_err(|e| format!("{} (M = {elements}, N = {steps}): {e}", family.name))?;
+    })?;
     let last = acc.last.unwrap_or_default();
     let errors = [
         ("contact_displacement_max", acc.contact),
@@ -330,27 +301,18 @@ fn run_level(
         ("total_energy_max", acc.total_energy_max),
         ("impulse_max", acc.impulse_max),
         ("penetration_max", acc.penetration.max(0.0)),
-    ]
-    .iter()
-    .map(|(n, v)| (n.to_string(), *v))
-    .collect();
+    ];
     if let Some(hist) = history.as_mut() {
         hist.final_nodal = body.nodal(&solution.final_displacement);
     }
-    Ok(RunOutput {
-        level: LevelOutcome {
-            elements,
-            steps,
-            h,
-            k,
-            errors,
-            summary: solution.audit.summary(),
-            solver_seconds: (solution.stats.loop_seconds - observer_seconds).max(0.0),
-            stats: solution.stats.clone(),
-        },
+    Ok(RunOutput::new(
+        (elements, steps, h, k),
+        &errors,
+        solution,
+        solver_seconds,
         history,
-        audit: record.then_some(solution.audit),
-    })
+        record,
+    ))
 }
 
 /// Nodal values of a free-dof vector into `out` (0 at the held end).
@@ -371,78 +333,36 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         (file.show.elements, file.show.courant),
         |f| file.shows(f),
     );
-    let bar = ctx.progress_bar(jobs.len() as u64, &file.id);
-    let results: Vec<Result<RunOutput, String>> = jobs
-        .par_iter()
-        .map(|j| {
-            let r = run_level(
-                &file.families[j.family],
-                j.elements,
-                j.steps,
-                j.final_time,
-                j.sweep.is_none(),
-            );
-            bar.inc(1);
-            r
-        })
-        .collect();
-    bar.finish_and_clear();
-    let mut levels = Vec::with_capacity(results.len());
-    let mut shown: Vec<(usize, ShownRun)> = Vec::new();
-    for (job, result) in jobs.iter().zip(results) {
-        let out = result?;
-        if let (None, Some(history), Some(audit)) = (job.sweep, out.history, out.audit) {
-            shown.push((
-                job.family,
-                ShownRun {
-                    level: out.level.clone(),
-                    history,
-                    audit,
-                },
-            ));
-        }
-        levels.push(out.level);
-    }
-    let outcomes = group_outcomes(&jobs, levels, &file.sweeps, &file.families);
-    let mut gates = rate_gates(&file.gates, &outcomes);
-    gates.extend(ceiling_gates(&file.ceilings, &outcomes));
-    for f in &file.families {
-        if let Some(w) = worst_summary(&outcomes, &f.name) {
-            gates.push(audit_gate(
-                &format!("energy audit: {}", f.name),
-                f.audit_checks(&w),
-                &f.audit_note(),
-            ));
-        }
-    }
-    gates.extend(identity_gates(&file, &shown));
-    report.gates = gates;
-    report.tables.push(errors_table(
+    let (outcomes, shown) = run_jobs(ctx, &file.id, &jobs, &file.sweeps, &file.families, |j| {
+        run_level(
+            &file.families[j.family],
+            j.elements,
+            j.steps,
+            j.final_time,
+            j.sweep.is_none(),
+        )
+    })?;
+    report_runs(
+        report,
         "every run: the measured errors",
         &ERRORS,
+        &file.families,
+        &file.gates,
+        &file.ceilings,
         &outcomes,
-    ));
-    report
-        .tables
-        .push(cost_and_audit_table(&file.families, &outcomes));
+    );
+    report.gates.extend(identity_gates(&file, &shown));
     report.tables.push(shown_table(&file, &shown));
     plots(&file, ctx, report, &outcomes, &shown)
 }
 
-/// A shown run: its level, histories and audit.
-struct ShownRun {
-    level: LevelOutcome,
-    history: History,
-    audit: EnergyAudit,
-}
-
 /// The identity gates between families on the shown level.
-fn identity_gates(file: &SignoriniBarCase, shown: &[(usize, ShownRun)]) -> Vec<GateVerdict> {
+fn identity_gates(file: &SignoriniBarCase, shown: &[ShownRun<History>]) -> Vec<GateVerdict> {
     let trajectory = |name: &str| {
         shown
             .iter()
-            .find(|(f, _)| file.families[*f].name == name)
-            .map(|(_, o)| &o.history.trajectory)
+            .find(|o| file.families[o.family].name == name)
+            .map(|o| &o.history.trajectory)
     };
     file.identical
         .iter()
@@ -475,14 +395,14 @@ fn identity_gates(file: &SignoriniBarCase, shown: &[(usize, ShownRun)]) -> Vec<G
 }
 
 /// The shown runs' errors and statistics.
-fn shown_table(file: &SignoriniBarCase, shown: &[(usize, ShownRun)]) -> Table {
+fn shown_table(file: &SignoriniBarCase, shown: &[ShownRun<History>]) -> Table {
     let rows = shown
         .iter()
-        .map(|(f, o)| {
+        .map(|o| {
             let l = &o.level;
             let e = |n: &str| l.errors.get(n).map_or("–".into(), |v| format!("{v:.3e}"));
             vec![
-                file.families[*f].name.clone(),
+                file.families[o.family].name.clone(),
                 format!("{} / {}", l.elements, l.steps),
                 e("contact_displacement_max"),
                 e("displacement_l2_final"),
@@ -525,42 +445,19 @@ fn plots(
     ctx: &RunContext,
     report: &mut CaseReport,
     outcomes: &[SweepOutcome],
-    shown: &[(usize, ShownRun)],
+    shown: &[ShownRun<History>],
 ) -> Result<(), String> {
     let level = shown
         .first()
-        .map(|(_, o)| format!("M = {}, N = {}", o.level.elements, o.level.steps))
+        .map(|o| format!("M = {}, N = {}", o.level.elements, o.level.steps))
         .unwrap_or_default();
-    // the audits, midpoint-type and Newmark runs apart (Newmark's energy leaves the scale)
-    for (group, newmark) in [("midpoint", false), ("newmark", true)] {
-        let runs: Vec<AuditRun<'_>> = shown
-            .iter()
-            .filter(|(f, _)| (file.families[*f].scheme == DynamicScheme::Newmark) == newmark)
-            .map(|(f, o)| AuditRun {
-                label: file.families[*f].name.clone(),
-                audit: &o.audit,
-            })
-            .collect();
-        if !runs.is_empty() {
-            plot_audits(
-                ctx,
-                report,
-                &format!("audit_{group}"),
-                &format!("{} ({level}), {group} runs", file.id),
-                &runs,
-                Some(ENERGY),
-            )?;
-        }
-    }
+    plot_shown_audits(ctx, report, &file.id, &level, &file.families, shown, ENERGY)?;
     let histories: Vec<(&str, &History)> = shown
         .iter()
-        .map(|(f, o)| (file.families[*f].name.as_str(), &o.history))
+        .map(|o| (file.families[o.family].name.as_str(), &o.history))
         .collect();
     history_panels(file, ctx, report, &level, &histories)?;
-    for (name, fig) in convergence_figures(&file.id, &file.sweeps, &file.gates, outcomes) {
-        ctx.plot(report, &name, &fig)?;
-    }
-    Ok(())
+    plot_convergence(ctx, report, &file.id, &file.sweeps, &file.gates, outcomes)
 }
 
 /// One panel per shown family against the exact solution: u(0, t), the contact force, the
@@ -573,30 +470,17 @@ fn history_panels(
     histories: &[(&str, &History)],
 ) -> Result<(), String> {
     let exact = PeriodicSignoriniBar;
-    let fine: Vec<f64> = (0..=3000)
-        .map(|i| file.final_time * i as f64 / 3000.0)
-        .collect();
-    let exact_series = |name: &str, f: &dyn Fn(f64) -> f64| {
-        Series::line(name, fine.iter().map(|&t| (t, f(t))))
-            .color(0)
-            .dashed()
-    };
-    let panel = |name: &str, y: &str, xs: &[f64], ys: Vec<f64>, exact: Series| {
-        Figure::new(name)
-            .x_label("t")
-            .y_label(y)
-            .series(Series::from_xy("computed", xs, &ys).color(1))
-            .series(exact)
-    };
+    let exact_series =
+        |name: &str, f: &dyn Fn(f64) -> f64| exact_history(name, file.final_time, 3000, f);
     let columns = histories.len().clamp(1, 3);
     let figs: Vec<Figure> = histories
         .iter()
         .map(|(name, h)| {
-            panel(
+            history_panel(
                 name,
                 "u(0, t)",
                 &h.time,
-                h.contact_displacement.clone(),
+                &h.contact_displacement,
                 exact_series("exact", &|t| exact.contact_displacement(t)),
             )
         })
@@ -611,11 +495,11 @@ fn history_panels(
     let figs: Vec<Figure> = histories
         .iter()
         .map(|(name, h)| {
-            panel(
+            history_panel(
                 name,
                 "N(t)",
                 &h.time,
-                h.contact_force.clone(),
+                &h.contact_force,
                 exact_series("exact −σ(0, t)", &|t| -exact.contact_stress(t)),
             )
         })
@@ -633,11 +517,11 @@ fn history_panels(
     let figs: Vec<Figure> = histories
         .iter()
         .map(|(name, h)| {
-            panel(
+            history_panel(
                 name,
                 "E_n − 1/8",
                 &h.time,
-                h.energy.iter().map(|e| e - ENERGY).collect(),
+                &h.energy.iter().map(|e| e - ENERGY).collect::<Vec<_>>(),
                 exact_series("exact", &|_| 0.0),
             )
         })
