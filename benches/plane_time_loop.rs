@@ -6,54 +6,21 @@
 //! `cargo bench --bench plane_time_loop`
 
 use std::hint::black_box;
-use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
-use contactlab::contact::normal_law::FoundationLaw;
-use contactlab::field::{Expression, Field};
-use contactlab::material::plane_law::IsotropicLinear;
-use contactlab::mesh::triangle::{Diagonal, RectangleSide, TriangleMesh};
-use contactlab::model::quasistatic::plane::{
-    BoundarySelector, ContactIntegration, ContactPart, DirichletPart, PlaneProblem, Support,
-    TractionPart,
-};
+use contactlab::model::quasistatic::plane::PlaneProblem;
+use contactlab::model::quasistatic::plane::Test2dParams;
 use contactlab::model::quasistatic::plane_solver::{PlaneParams, PlaneSolver, PlaneStep};
 use contactlab::model::quasistatic::scheme::TimeScheme;
 use contactlab::time::grid::TimeGrid;
 
 fn test_2d(n: usize) -> PlaneProblem {
-    PlaneProblem {
-        mesh: TriangleMesh::rectangle([0.0, 0.0], [6.0, 6.0], [n, n], Diagonal::Up)
-            .expect("valid mesh"),
-        final_time: 1.0,
-        viscosity: Arc::new(IsotropicLinear::viscosity(30.0, 20.0)),
-        elasticity: Arc::new(IsotropicLinear::plane_stress(100.0, 0.3)),
-        body_force: [Field::Constant(0.0), Field::Constant(0.0)],
-        dirichlet: vec![DirichletPart {
-            boundary: BoundarySelector::Sides(vec![RectangleSide::Left, RectangleSide::Right]),
-            support: Support::Clamped,
-        }],
-        traction: vec![TractionPart {
-            boundary: BoundarySelector::side(RectangleSide::Top),
-            traction: [
-                Field::Constant(0.0),
-                Field::Expression(
-                    Expression::parse("f2", "-10*(6 - x)*t").expect("valid expression"),
-                ),
-            ],
-        }],
-        contact: Some(ContactPart {
-            boundary: BoundarySelector::side(RectangleSide::Bottom),
-            law: Arc::new(FoundationLaw::Lubricated {
-                beta: 1000.0,
-                p0: Field::Constant(2.0),
-            }),
-            integration: ContactIntegration::Gauss2,
-            source: None,
-        }),
-        initial_displacement: [Field::Constant(0.0), Field::Constant(0.0)],
-    }
+    PlaneProblem::fernandez_sofonea_test_2d(Test2dParams {
+        divisions: n,
+        ..Default::default()
+    })
+    .expect("valid problem")
 }
 
 fn time_loop(c: &mut Criterion) {

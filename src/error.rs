@@ -124,6 +124,13 @@ pub enum SolveError {
         time: f64,
         reason: String,
     },
+    /// An eigenproblem failed at a parameter point (`v̄ = 0.5, p = 2`).
+    #[error("at {at}: {source}")]
+    Eigenproblem {
+        at: String,
+        #[source]
+        source: crate::solve::quadratic_eigen::QuadraticEigenError,
+    },
     /// A factorization met a zero, negative or non-finite pivot.
     #[error("singular or indefinite {operator}: pivot {pivot:e} at row {row}")]
     Singular {

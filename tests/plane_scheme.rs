@@ -6,13 +6,12 @@ use std::sync::Arc;
 
 use contactlab::contact::normal_law::{FoundationLaw, SpaceTime};
 use contactlab::error::{Error, SolveError};
-use contactlab::field::{Expression, Field};
+use contactlab::field::Field;
 use contactlab::material::nonlinear::{SaturatingViscosity, SofteningElasticity};
-use contactlab::material::plane_law::IsotropicLinear;
-use contactlab::mesh::triangle::{Diagonal, RectangleSide, TriangleMesh};
+use contactlab::mesh::triangle::RectangleSide;
+use contactlab::model::quasistatic::plane::Test2dParams;
 use contactlab::model::quasistatic::plane::{
-    BoundarySelector, ContactIntegration, ContactPart, DirichletPart, PlaneProblem, Support,
-    TractionPart,
+    BoundarySelector, ContactIntegration, ContactPart, PlaneProblem, Support,
 };
 use contactlab::model::quasistatic::plane_dofs::PlaneDofs;
 use contactlab::model::quasistatic::plane_solver::{
@@ -22,34 +21,13 @@ use contactlab::model::quasistatic::scheme::TimeScheme;
 use contactlab::time::grid::TimeGrid;
 
 fn test_2d(n: usize, beta: f64, support: Support, integration: ContactIntegration) -> PlaneProblem {
-    PlaneProblem {
-        mesh: TriangleMesh::rectangle([0.0, 0.0], [6.0, 6.0], [n, n], Diagonal::Up).unwrap(),
-        final_time: 1.0,
-        viscosity: Arc::new(IsotropicLinear::viscosity(30.0, 20.0)),
-        elasticity: Arc::new(IsotropicLinear::plane_stress(100.0, 0.3)),
-        body_force: [Field::Constant(0.0), Field::Constant(0.0)],
-        dirichlet: vec![DirichletPart {
-            boundary: BoundarySelector::Sides(vec![RectangleSide::Left, RectangleSide::Right]),
-            support,
-        }],
-        traction: vec![TractionPart {
-            boundary: BoundarySelector::side(RectangleSide::Top),
-            traction: [
-                Field::Constant(0.0),
-                Field::Expression(Expression::parse("f2", "-10*(6 - x)*t").unwrap()),
-            ],
-        }],
-        contact: Some(ContactPart {
-            boundary: BoundarySelector::side(RectangleSide::Bottom),
-            law: Arc::new(FoundationLaw::Lubricated {
-                beta,
-                p0: Field::Constant(2.0),
-            }),
-            integration,
-            source: None,
-        }),
-        initial_displacement: [Field::Constant(0.0), Field::Constant(0.0)],
-    }
+    PlaneProblem::fernandez_sofonea_test_2d(Test2dParams {
+        divisions: n,
+        beta,
+        support,
+        integration,
+    })
+    .unwrap()
 }
 
 fn final_u(

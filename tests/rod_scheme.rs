@@ -6,6 +6,7 @@
 use std::sync::Arc;
 
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 
 use contactlab::contact::normal_law::{FoundationLaw, SpaceTime};
 use contactlab::fem::norms::h1_seminorm_error;
@@ -101,8 +102,12 @@ fn rod_p0_2_reference_values_at_m100_n50() {
     );
 }
 
-/// Residual of α K w + b K u_prev + p_ν(w(L)) e_M − F over the free nodes, and its scale
-/// α |K||w| + b |K||u_prev| + |p| + |F| (the backward-error scale of a stable solve).
+/// Residual of α K w + b K u_prev + p_ν(w(L)) e_M − F over the free nodes, and its scale: the
+/// backward-error scale of the computed w = (g − b u_prev − p z)/α (g = K⁻¹F, z = K⁻¹e_M), i.e.
+/// |K| (|g| + b |u_prev| + |p| |z|) + b |K||u_prev| + |p| + |F|, with g and z in closed form:
+/// for a constant load g(x) = f0 (L x − x²/2) and z(x) = x, both reproduced exactly at the nodes
+/// by P1 in 1D. (Rounding in forming w is relative to the terms that form it, not to w: when they
+/// nearly cancel, α |K||w| would understate the scale.)
 fn step_residual(
     mesh: &IntervalMesh,
     alpha: f64,
@@ -116,6 +121,13 @@ fn step_residual(
     let m = mesh.elements();
     let mut f = vec![0.0; m + 1];
     constant_load_vector_into(mesh, f0, &mut f);
+    let l = mesh.length();
+    let terms: Vec<f64> = mesh
+        .nodes()
+        .iter()
+        .zip(u_prev)
+        .map(|(&x, &u)| (f0 * (l * x - 0.5 * x * x)).abs() + b * u.abs() + p.abs() * x)
+        .collect();
     // (K v)_i and (|K||v|)_i
     let apply = |v: &[f64], i: usize| {
         let v = &v[1..];
@@ -137,15 +149,21 @@ fn step_residual(
         let contact = if i + 1 == m { p } else { 0.0 };
         let (kw, kw_abs) = apply(w, i);
         let (ku, ku_abs) = apply(u_prev, i);
+        let (_, kt_abs) = apply(&terms, i);
         let r = alpha * kw + b * ku + contact - f[i + 1];
         worst = worst.max(r.abs());
-        scale = scale.max(alpha * kw_abs + b * ku_abs + contact.abs() + f[i + 1].abs());
+        let formed = (alpha * kw_abs).max(kt_abs);
+        scale = scale.max(formed + b * ku_abs + contact.abs() + f[i + 1].abs());
     }
     (worst, scale)
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    // A fixed seed: the same 64 draws on every run (the suite is deterministic).
+    #![proptest_config(ProptestConfig {
+        rng_seed: RngSeed::Fixed(0x636f_6e74_6163_746c),
+        ..ProptestConfig::with_cases(64)
+    })]
     /// Every step solves its nonsmooth equation exactly: the discrete residual is at round-off for
     /// arbitrary data, meshes and all three schemes.
     #[test]

@@ -65,9 +65,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, InputError};
+use crate::error::{Error, InputError, SolveError};
 use crate::model::moving::disc::DiscParticle;
-use crate::model::moving::error::MovingError;
 use crate::model::moving::finite_element_basis::ElementKind;
 use crate::model::moving::stability::{assess, StabilityAssessment, VerdictParams};
 use crate::model::moving::stability_map::{
@@ -374,34 +373,39 @@ impl MovingScene {
     /// Parses and validates a moving-continuum scene (`model = "moving_string"` or
     /// `"disc_particle"`); `source_name` labels errors.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, Error> {
-        match super::model_of(text, source_name)?.as_str() {
+        let table: toml::Table = text.parse().map_err(|e| scene_error(source_name, e))?;
+        Self::from_table(table, source_name)
+    }
+
+    /// Validates a parsed scene table (read once).
+    pub fn from_table(table: toml::Table, source_name: &str) -> Result<Self, Error> {
+        let model = table
+            .get("model")
+            .and_then(|m| m.as_str())
+            .unwrap_or("(missing)")
+            .to_string();
+        match model.as_str() {
             "moving_string" => {
                 let f: MovingStringSceneFile =
-                    toml::from_str(text).map_err(|e| scene_error(source_name, e))?;
+                    table.try_into().map_err(|e| scene_error(source_name, e))?;
                 Ok(MovingScene::String(Box::new(MovingStringScene::from_file(
-                    &f,
+                    f,
                 )?)))
             }
             "disc_particle" => {
-                let f: DiscSceneFile =
-                    toml::from_str(text).map_err(|e| scene_error(source_name, e))?;
-                Ok(MovingScene::Disc(DiscScene::from_file(&f)?))
+                let f: DiscSceneFile = table.try_into().map_err(|e| scene_error(source_name, e))?;
+                Ok(MovingScene::Disc(DiscScene::from_file(f)?))
             }
             other => Err(
                 InputError::new("model", other, "\"moving_string\" or \"disc_particle\"").into(),
             ),
         }
     }
-
-    /// True for the model names this module reads.
-    pub fn handles(model: &str) -> bool {
-        matches!(model, "moving_string" | "disc_particle")
-    }
 }
 
 impl MovingStringScene {
     /// Validates a parsed string scene.
-    pub fn from_file(f: &MovingStringSceneFile) -> Result<Self, Error> {
+    pub fn from_file(f: MovingStringSceneFile) -> Result<Self, Error> {
         let oscillator = match &f.oscillator {
             None => None,
             Some(o) => {
@@ -581,14 +585,14 @@ impl MovingStringScene {
     }
 
     /// Runs the scene: the analysed point, every sweep and the map.
-    pub fn run(&self) -> Result<StringSceneResult, MovingError> {
+    pub fn run(&self) -> Result<StringSceneResult, Error> {
         let system = self.model.system(&self.data)?;
         let eigen = system
             .eigen(QuadraticEigenParams {
                 compute_eigenvectors: self.eigenvectors,
                 ..Default::default()
             })
-            .map_err(|source| MovingError::Eigen {
+            .map_err(|source| SolveError::Eigenproblem {
                 at: "the scene's point".into(),
                 source,
             })?;
@@ -643,7 +647,7 @@ impl MovingStringScene {
 }
 
 /// What a string scene computes.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize)]
 pub struct StringSceneResult {
     pub coordinates: Vec<String>,
     pub control_parameter: f64,
@@ -659,7 +663,7 @@ pub struct StringSceneResult {
 
 impl DiscScene {
     /// Validates a parsed disc scene.
-    pub fn from_file(f: &DiscSceneFile) -> Result<Self, Error> {
+    pub fn from_file(f: DiscSceneFile) -> Result<Self, Error> {
         let p = &f.particle;
         let particle = DiscParticle {
             mass: p.mass,
@@ -693,8 +697,8 @@ impl DiscScene {
     }
 
     /// The eigenvalues and verdict at the scene's point and along every sweep.
-    pub fn run(&self) -> Result<DiscSceneResult, MovingError> {
-        let point = |p: &DiscParticle| -> Result<DiscPoint, MovingError> {
+    pub fn run(&self) -> Result<DiscSceneResult, Error> {
+        let point = |p: &DiscParticle| -> Result<DiscPoint, Error> {
             let s = p.system()?;
             let e = solve_quadratic_eigen(
                 s.mass.as_ref(),
@@ -702,7 +706,7 @@ impl DiscScene {
                 s.stiffness.as_ref(),
                 QuadraticEigenParams::default(),
             )
-            .map_err(|source| MovingError::Eigen {
+            .map_err(|source| SolveError::Eigenproblem {
                 at: format!("Ω = {}", p.angular_speed),
                 source,
             })?;

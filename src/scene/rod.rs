@@ -39,6 +39,9 @@
 //! newton_relative_tolerance = 1.7763568394002505e-15
 //! newton_max_iterations = 60
 //! load_quadrature_points = 4
+//!
+//! # [exact]                    # optional, for the verification suite only:
+//! # solution = "paper_4_6"     # `verify scene` then also writes the errors against it
 //! ```
 
 use std::sync::Arc;
@@ -71,6 +74,9 @@ pub struct RodSceneFile {
     pub output: OutputSection,
     #[serde(default)]
     pub solver: SolverSection,
+    /// `[exact]`: the exact solution the verification suite measures this scene against
+    /// (`verify scene` then writes `errors.json`). The solver does not read it.
+    pub exact: Option<toml::Table>,
 }
 
 /// `[rod]`.
@@ -149,6 +155,8 @@ pub struct RodScene {
     pub scheme: TimeScheme,
     pub params: RodParams,
     pub output: RodOutputRequest,
+    /// The scene's `[exact]` table, for the verification suite (not read by the solver).
+    pub exact: Option<toml::Table>,
 }
 
 impl RodScene {
@@ -158,11 +166,11 @@ impl RodScene {
             source_name: source_name.to_string(),
             message: e.to_string(),
         })?;
-        Self::from_file(&file)
+        Self::from_file(file)
     }
 
     /// Validates a parsed scene file.
-    pub fn from_file(file: &RodSceneFile) -> Result<Self, Error> {
+    pub fn from_file(file: RodSceneFile) -> Result<Self, Error> {
         if file.model != "rod" {
             return Err(InputError::new("model", &file.model, "\"rod\"").into());
         }
@@ -219,6 +227,7 @@ impl RodScene {
                 snapshot_times: file.output.times.clone(),
                 probes: file.output.probes.clone(),
             },
+            exact: file.exact.clone(),
         })
     }
 

@@ -32,6 +32,7 @@ use faer::linalg::evd::{self, ComputeEigenvectors};
 use faer::linalg::gevd;
 use faer::{c64, Conj, Mat, MatRef, Par};
 
+use crate::solve::balance::balance;
 use crate::solve::small_eigenvalues::SmallEigenWorkspace;
 
 /// Which dense eigensolver runs on the companion matrix.
@@ -461,7 +462,7 @@ impl QuadraticEigenSolver {
         let gamma = self.fill_companion(damping, stiffness)?;
         let a = &mut self.companion;
         if self.params.balance && !self.params.compute_eigenvectors {
-            balance(a);
+            balance(a, None);
         }
         let companion_norm = frobenius_norm(a.as_ref());
         if !companion_norm.is_finite() {
@@ -588,50 +589,6 @@ impl QuadraticEigenSolver {
             }
         }
         (x, worst)
-    }
-}
-
-/// Balances `a` in place by a diagonal similarity D⁻¹ A D with powers of 2 until no row/column
-/// pair changes by more than 5% (Parlett & Reinsch 1969; LAPACK dgebal without permutation).
-/// Powers of 2 make the similarity exact in floating point.
-pub fn balance(a: &mut Mat<f64>) {
-    let n = a.nrows();
-    for _sweep in 0..64 {
-        let mut converged = true;
-        for i in 0..n {
-            let (mut c, mut r) = (0.0f64, 0.0f64);
-            for j in 0..n {
-                if j != i {
-                    c += a[(j, i)].abs();
-                    r += a[(i, j)].abs();
-                }
-            }
-            if c == 0.0 || r == 0.0 {
-                continue;
-            }
-            let total = c + r;
-            let (mut f, mut c2, mut r2) = (1.0, c, r);
-            while c2 < 0.5 * r2 {
-                c2 *= 2.0;
-                r2 *= 0.5;
-                f *= 2.0;
-            }
-            while c2 >= 2.0 * r2 {
-                c2 *= 0.5;
-                r2 *= 2.0;
-                f *= 0.5;
-            }
-            if c2 + r2 < 0.95 * total {
-                converged = false;
-                for j in 0..n {
-                    a[(i, j)] /= f;
-                    a[(j, i)] *= f;
-                }
-            }
-        }
-        if converged {
-            break;
-        }
     }
 }
 

@@ -11,6 +11,8 @@
 //! verification case `moving_map` recomputes every point of the map with faer and gates the
 //! agreement of the verdicts and of max Re λ.
 
+use crate::solve::balance::{balance, RowMajor};
+
 /// Why the QR iteration stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[error("the Francis QR iteration did not converge for eigenvalue {index} within {iterations} iterations")]
@@ -75,7 +77,7 @@ impl RankOneLine {
         let n = b.len();
         let mut a = a0.to_vec();
         let mut scale = vec![1.0; n];
-        balance_row_major(&mut a, n, &mut scale);
+        balance(&mut RowMajor { a: &mut a, n }, Some(&mut scale));
         let mut bb: Vec<f64> = b.iter().zip(&scale).map(|(x, d)| x / d).collect();
         let mut cc: Vec<f64> = c.iter().zip(&scale).map(|(x, d)| x * d).collect();
         // P b = β e₁ with P = I − 2 v vᵀ/(vᵀv), v = b + sign(b₀)‖b‖ e₁.
@@ -134,49 +136,6 @@ impl RankOneLine {
             *x += t * r;
         }
         hqr(&mut self.work, self.n, re, im)
-    }
-}
-
-/// Balances the row-major matrix `a` (Parlett & Reinsch 1969) and returns the diagonal scaling
-/// D (powers of 2) in `scale`: `a` becomes D⁻¹ A D.
-fn balance_row_major(a: &mut [f64], n: usize, scale: &mut [f64]) {
-    for _sweep in 0..64 {
-        let mut converged = true;
-        for i in 0..n {
-            let (mut c, mut r) = (0.0f64, 0.0f64);
-            for j in 0..n {
-                if j != i {
-                    c += a[j * n + i].abs();
-                    r += a[i * n + j].abs();
-                }
-            }
-            if c == 0.0 || r == 0.0 {
-                continue;
-            }
-            let total = c + r;
-            let (mut f, mut c2, mut r2) = (1.0, c, r);
-            while c2 < 0.5 * r2 {
-                c2 *= 2.0;
-                r2 *= 0.5;
-                f *= 2.0;
-            }
-            while c2 >= 2.0 * r2 {
-                c2 *= 0.5;
-                r2 *= 2.0;
-                f *= 0.5;
-            }
-            if c2 + r2 < 0.95 * total {
-                converged = false;
-                scale[i] *= f;
-                for j in 0..n {
-                    a[i * n + j] /= f;
-                    a[j * n + i] *= f;
-                }
-            }
-        }
-        if converged {
-            break;
-        }
     }
 }
 

@@ -1,58 +1,42 @@
-//! The case catalogue: every file in verification/cases parses, has a unique id, an explanation and
-//! gates of its kind; the quick tier is non-empty.
+//! The case catalogue: every file in verification/cases parses with its kind's format, has a
+//! unique id equal to its file name, an explanation, and a kind owned by one family (whose name it
+//! starts with); the quick tier holds the rod's paper cases.
 
 use std::path::PathBuf;
 
-use contactlab_verify::case::{Case, CaseFile, CaseKind, Tier};
+use contactlab_verify::core::case::{Case, Tier};
+use contactlab_verify::registry;
 
 fn cases() -> Vec<Case> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases");
-    Case::load_all(&dir).expect("every case file parses")
+    registry::load_all(&dir).expect("every case file parses with its kind's format")
 }
 
 #[test]
-fn every_case_parses_with_an_explanation_and_gates() {
+fn every_case_parses_with_an_explanation_and_a_family() {
     let cases = cases();
     assert!(cases.len() >= 9);
     for c in &cases {
-        // every family checks its own format (the dynamic and moving families have their own)
-        contactlab_verify::run::check_case(c).expect("the case's format");
+        registry::check(c).expect("the case's format");
         assert!(
             c.header.explanation.trim().len() > 80,
             "{}: explain the expected numbers",
             c.header.id
         );
-        assert_eq!(
-            c.path.file_stem().and_then(|s| s.to_str()),
-            Some(c.header.id.as_str()),
-            "file name = id"
-        );
-        let Ok(f) = CaseFile::from_case(c) else {
-            continue;
-        };
-        let f = &f;
+        let family = registry::family_of(&c.header.kind).expect("a family owns the kind");
         assert!(
-            f.explanation.trim().len() > 80,
-            "{}: explain the expected numbers",
-            f.id
+            c.header.kind.starts_with(family.name()),
+            "{}: the kind names its family",
+            c.header.id
         );
-        let gated = match f.kind {
-            CaseKind::Convergence => !f.gate.is_empty() || !f.reference.is_empty(),
-            CaseKind::Stability => f.stability.is_some(),
-            CaseKind::Extremes => !f.extreme.is_empty(),
-            CaseKind::WorkPrecision => f.work_precision.is_some(),
-            CaseKind::Performance => f.performance.is_some(),
-            CaseKind::PaperTest2d => f.paper_test.is_some(),
-            CaseKind::PlaneStability => f.plane_stability.is_some(),
-            CaseKind::PlanePaths => f.plane_paths.is_some(),
-            CaseKind::PlanePerformance => f.plane_performance.is_some(),
-        };
-        assert!(gated, "{}: no gates", f.id);
-        assert_eq!(
-            c.path.file_stem().and_then(|s| s.to_str()),
-            Some(f.id.as_str()),
-            "file name = id"
-        );
+    }
+}
+
+#[test]
+fn every_kind_belongs_to_exactly_one_family() {
+    let kinds = registry::kinds();
+    for (i, k) in kinds.iter().enumerate() {
+        assert!(!kinds[..i].contains(k), "{k} is claimed twice");
     }
 }
 
@@ -82,10 +66,10 @@ fn a_case_with_an_unknown_key_is_rejected() {
     let path = dir.join("bad.toml");
     std::fs::write(
         &path,
-        "id = \"bad\"\ntitle = \"t\"\nkind = \"convergence\"\nexplanation = \"e\"\ntolerence = 1\n",
+        "id = \"bad\"\ntitle = \"t\"\nkind = \"rod_convergence\"\nexplanation = \"e\"\ntolerence = 1\n",
     )
     .unwrap();
-    let err = Case::load(&path).unwrap_err().to_string();
+    let err = registry::load(&path).unwrap_err().to_string();
     assert!(err.contains("tolerence"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -2,14 +2,15 @@
 //! a deliberately wrong expected rate, or a ceiling below the observed error, fails — and a failing
 //! case makes the report say so. Sweeps run on 1 and 2 threads give bit-identical errors.
 
-use contactlab_verify::case::Case;
-use contactlab_verify::report::metadata::Metadata;
-use contactlab_verify::run::{run_case, RunContext};
+use contactlab_verify::core::case::Case;
+use contactlab_verify::core::context::RunContext;
+use contactlab_verify::core::report::metadata::Metadata;
+use contactlab_verify::registry;
 
 const CASE: &str = r#"
 id = "e2e"
 title = "end to end"
-kind = "convergence"
+kind = "rod_convergence"
 explanation = "test"
 [scene]
 model = "rod"
@@ -57,20 +58,20 @@ fn ctx(tag: &str) -> RunContext {
 
 #[test]
 fn true_expected_rate_passes() {
-    let r = run_case(&case(1.0, 1e-1), &ctx("pass"));
+    let r = registry::run(&case(1.0, 1e-1), &ctx("pass"));
     assert!(r.passed, "{:?}", r.gates);
 }
 
 #[test]
 fn deliberately_wrong_expected_rate_fails() {
-    let r = run_case(&case(2.0, 1e-1), &ctx("rate"));
+    let r = registry::run(&case(2.0, 1e-1), &ctx("rate"));
     assert!(!r.passed);
     assert!(!r.gates[0].checks[0].passed);
 }
 
 #[test]
 fn ceiling_below_the_finest_error_fails() {
-    let r = run_case(&case(1.0, 1e-4), &ctx("ceiling"));
+    let r = registry::run(&case(1.0, 1e-4), &ctx("ceiling"));
     assert!(!r.passed);
 }
 
@@ -85,8 +86,8 @@ fn sweeps_are_bit_identical_on_one_and_two_threads() {
         .num_threads(2)
         .build()
         .unwrap();
-    let a = one.install(|| run_case(&c, &ctx("t1")));
-    let b = two.install(|| run_case(&c, &ctx("t2")));
+    let a = one.install(|| registry::run(&c, &ctx("t1")));
+    let b = two.install(|| registry::run(&c, &ctx("t2")));
     for (la, lb) in a.sweeps[0].levels.iter().zip(&b.sweeps[0].levels) {
         for (k, v) in &la.errors {
             assert_eq!(v.to_bits(), lb.errors[k].to_bits(), "{k}");

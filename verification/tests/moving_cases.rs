@@ -4,13 +4,14 @@
 
 use std::path::PathBuf;
 
-use contactlab_verify::case::{Case, Tier};
-use contactlab_verify::report::metadata::Metadata;
-use contactlab_verify::run::{run_case, RunContext};
+use contactlab_verify::core::case::{Case, Tier};
+use contactlab_verify::core::context::RunContext;
+use contactlab_verify::core::report::metadata::Metadata;
+use contactlab_verify::registry;
 
 fn moving_cases() -> Vec<Case> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases");
-    Case::load_all(&dir)
+    contactlab_verify::registry::load_all(&dir)
         .expect("every case file parses")
         .into_iter()
         .filter(|c| c.header.kind.starts_with("moving_"))
@@ -22,7 +23,7 @@ fn every_moving_case_parses_with_an_explanation() {
     let cases = moving_cases();
     assert!(cases.len() >= 8);
     for c in &cases {
-        contactlab_verify::moving::check_case(c).expect("its kind's format");
+        contactlab_verify::registry::check(c).expect("its kind's format");
         assert!(
             c.header.explanation.trim().len() > 200,
             "{}: explain the numbers",
@@ -58,7 +59,9 @@ fn an_unknown_key_in_a_moving_case_is_named() {
         .replace("round_off = ", "roundoff = ");
     let path = dir.join("moving_symmetry.toml");
     std::fs::write(&path, text).unwrap();
-    let err = Case::load(&path).unwrap_err().to_string();
+    let err = contactlab_verify::registry::load(&path)
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("roundoff"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -75,7 +78,7 @@ fn quick_moving_cases_pass() {
         .iter()
         .filter(|c| c.header.tier == Tier::Quick)
     {
-        let r = run_case(c, &ctx);
+        let r = registry::run(c, &ctx);
         assert!(
             r.passed,
             "{}: {:?} {:?}",

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use contactlab_verify::scene_run::run_scene;
+use contactlab_verify::registry::run_scene;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")

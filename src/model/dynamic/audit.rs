@@ -132,4 +132,52 @@ impl EnergyAudit {
         }
         s
     }
+
+    /// Whether every number of every audit record is finite (no NaN or ∞ was recorded).
+    pub fn is_finite(&self) -> bool {
+        self.records.iter().all(|r| {
+            [
+                r.time,
+                r.kinetic,
+                r.elastic,
+                r.penalty,
+                r.external_work,
+                r.contact_work,
+                r.friction_work,
+                r.constraint_work,
+                r.step_friction_work,
+                r.step_constraint_work,
+                r.residual_1_48,
+                r.residual_1_49,
+                r.residual_3_7,
+                r.contact_force,
+                r.max_penetration,
+                r.friction_force,
+            ]
+            .iter()
+            .all(|v| v.is_finite())
+        })
+    }
+
+    /// The drift of the balance (1.49) at every record: (E + Φ)_n − (E + Φ)_0 − W_ext − W_τ − D_b
+    /// (zero for a conserving run; the energy error of the midpoint rule on a hyperelastic body).
+    pub fn balance_drift(&self) -> Vec<(f64, f64)> {
+        let Some(first) = self.records.first() else {
+            return Vec::new();
+        };
+        let e0 = first.energy() + first.penalty;
+        self.records
+            .iter()
+            .map(|r| {
+                (
+                    r.time,
+                    r.energy() + r.penalty
+                        - e0
+                        - r.external_work
+                        - r.friction_work
+                        - r.constraint_work,
+                )
+            })
+            .collect()
+    }
 }

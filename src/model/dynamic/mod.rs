@@ -9,7 +9,8 @@
 //! contact treatments of [`contact_model`] solved by one semismooth Newton method ([`newton`])
 //! on a full or a condensed step operator ([`step_operator`]). Every run carries its energy audit
 //! ([`audit`]): the residuals of BDS Propositions 1.1 and 1.3 and of HLT Proposition 3.7 per
-//! step.
+//! step; [`record`] observes a run step by step (what a run that stops partway computed) and
+//! says which identities a problem satisfies to round-off.
 
 pub mod audit;
 pub mod bar;
@@ -17,6 +18,7 @@ pub mod body;
 pub mod contact_model;
 pub mod newton;
 pub mod plane_body;
+pub mod record;
 pub mod scheme;
 pub mod solver;
 pub mod step_operator;

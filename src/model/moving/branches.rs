@@ -8,16 +8,18 @@
 //! matching swaps them); the global assignment never maps two branches to one eigenvalue.
 
 use faer::c64;
+use serde::Serialize;
 
 use crate::error::InputError;
 
 /// The branches of a sweep.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EigenBranches {
     /// The parameter values s_i.
     pub parameters: Vec<f64>,
     /// `branches[b][i]`: branch b at s_i. Branches are numbered by the eigenvalues at s_0 sorted
-    /// by imaginary part, then real part.
+    /// by imaginary part, then real part ([Re, Im] pairs in JSON).
+    #[serde(serialize_with = "crate::model::moving::serialize_complex_rows")]
     pub branches: Vec<Vec<c64>>,
     /// The largest |λ − λ̂| of an assigned eigenvalue, relative to the spectral scale at that
     /// step (a measure of how far the predictor had to reach; small means unambiguous).

@@ -1,5 +1,5 @@
 //! Moving continua with contacts and sliding friction: linearized models and their stability
-//! (Hetzler 2009; restated in `shared/spec/moving-continua.md`).
+//! (Hetzler 2009; restated in `docs/moving_continua.md`).
 //!
 //! In a spatial frame the equations linearized about a steady state read
 //!
@@ -30,10 +30,23 @@
 /// that users (and the verification crate) need no direct dependency on faer.
 pub use faer::{c64, Mat, MatRef};
 
+/// Serializes complex numbers as [Re, Im] pairs (serde's `serialize_with` for `Vec<Vec<c64>>`).
+pub fn serialize_complex_rows<S: serde::Serializer>(
+    rows: &[Vec<c64>],
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeSeq;
+    let mut seq = serializer.serialize_seq(Some(rows.len()))?;
+    for row in rows {
+        let pairs: Vec<[f64; 2]> = row.iter().map(|z| [z.re, z.im]).collect();
+        seq.serialize_element(&pairs)?;
+    }
+    seq.end()
+}
+
 pub mod basis;
 pub mod branches;
 pub mod disc;
-pub mod error;
 pub mod finite_element_basis;
 pub mod friction;
 pub mod properties;

@@ -15,8 +15,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use faer::{c64, Mat};
 use serde::Serialize;
 
-use crate::error::InputError;
-use crate::model::moving::error::MovingError;
+use crate::error::{Error, InputError, SolveError};
 use crate::model::moving::stability::{assess, StabilityAssessment, Verdict, VerdictParams};
 use crate::model::moving::string_data::{MovingStringData, StringParameter};
 use crate::model::moving::string_model::MovingStringModel;
@@ -73,12 +72,14 @@ pub struct StabilityMapParams {
 
 impl StabilityMapParams {
     /// Checks the parameters.
-    pub fn validate(&self) -> Result<(), MovingError> {
+    pub fn validate(&self) -> Result<(), Error> {
         self.verdict.validate()?;
-        self.eigen.validate().map_err(|source| MovingError::Eigen {
-            at: "the map's parameters".into(),
-            source,
-        })?;
+        self.eigen
+            .validate()
+            .map_err(|source| SolveError::Eigenproblem {
+                at: "the map's parameters".into(),
+                source,
+            })?;
         if self.threads > 4096 {
             return Err(InputError::new("map.threads", self.threads, "0 to 4096").into());
         }
@@ -219,7 +220,7 @@ impl StringWorkspace {
         model: &MovingStringModel,
         data: &MovingStringData,
         eigen: QuadraticEigenParams,
-    ) -> Result<&[c64], MovingError> {
+    ) -> Result<&[c64], Error> {
         model.assemble_into(data, &mut self.system)?;
         self.system.velocity_matrix_into(&mut self.c);
         self.system.stiffness_matrix_into(&mut self.k);
@@ -228,7 +229,7 @@ impl StringWorkspace {
         let rebuild = !matches!(&self.solver, Some((m, _)) if *m == mass_key);
         if rebuild {
             let solver = QuadraticEigenSolver::new(self.system.mass.as_ref(), eigen)
-                .map_err(|source| MovingError::Eigen { at: at(), source })?;
+                .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
             self.solver = Some((mass_key, solver));
         }
         let Some((_, solver)) = self.solver.as_mut() else {
@@ -236,7 +237,7 @@ impl StringWorkspace {
         };
         solver
             .eigenvalues_into(self.c.as_ref(), self.k.as_ref(), &mut self.eigenvalues)
-            .map_err(|source| MovingError::Eigen { at: at(), source })?;
+            .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
         Ok(&self.eigenvalues)
     }
 }
@@ -260,7 +261,7 @@ pub fn string_stability_map(
     x: &GridAxis,
     y: &GridAxis,
     params: &StabilityMapParams,
-) -> Result<StabilityMap, MovingError> {
+) -> Result<StabilityMap, Error> {
     params.validate()?;
     base.validate()?;
     if x.parameter == y.parameter {
@@ -279,7 +280,7 @@ pub fn string_stability_map(
         y.values.len(),
         params.threads,
         || StringWorkspace::new(model, base),
-        |iy, ws: &mut StringWorkspace| -> Result<Vec<StabilityAssessment>, MovingError> {
+        |iy, ws: &mut StringWorkspace| -> Result<Vec<StabilityAssessment>, Error> {
             let mut row = Vec::with_capacity(nx);
             for &xv in &x.values {
                 let mut d = *base;
@@ -309,7 +310,7 @@ fn line_map(
     x: &GridAxis,
     y: &GridAxis,
     params: &StabilityMapParams,
-) -> Result<Option<StabilityMap>, MovingError> {
+) -> Result<Option<StabilityMap>, Error> {
     use crate::solve::small_eigenvalues::RankOneLine;
     let is_friction = |p: StringParameter| {
         matches!(
@@ -345,20 +346,20 @@ fn line_map(
         n_lines,
         params.threads,
         || (),
-        |il, _ws: &mut ()| -> Result<Vec<StabilityAssessment>, MovingError> {
+        |il, _ws: &mut ()| -> Result<Vec<StabilityAssessment>, Error> {
             let mut d = *base;
             other.parameter.set(&mut d, other.values[il])?;
             line_axis.parameter.set(&mut d, 0.0)?;
             let at = || describe(&d);
             let system = model.system(&d)?;
             let mut solver = QuadraticEigenSolver::new(system.mass.as_ref(), params.eigen)
-                .map_err(|source| MovingError::Eigen { at: at(), source })?;
+                .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
             let (a0, gamma) = solver
                 .scaled_companion(
                     system.velocity_matrix().as_ref(),
                     system.stiffness_matrix().as_ref(),
                 )
-                .map_err(|source| MovingError::Eigen { at: at(), source })?;
+                .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
             let Some((mut r, s, coef)) = model.friction_rank_one(&d, line_axis.parameter) else {
                 unreachable!("checked above")
             };
@@ -376,7 +377,7 @@ fn line_map(
             let mut out = Vec::with_capacity(n_points);
             for &t in &line_axis.values {
                 line.eigenvalues_at(t, &mut re, &mut im)
-                    .map_err(|_| MovingError::Eigen {
+                    .map_err(|_| SolveError::Eigenproblem {
                         at: format!("{}, {} = {t}", at(), line_axis.parameter.key()),
                         source: crate::solve::quadratic_eigen::QuadraticEigenError::NoConvergence {
                             dimension: 2 * n,

@@ -2,9 +2,10 @@
 //! a parameter (eigenvalue loci, Campbell diagrams, stability boundaries).
 
 use faer::c64;
+use serde::Serialize;
 
+use crate::error::Error;
 use crate::model::moving::branches::{track_branches, EigenBranches};
-use crate::model::moving::error::MovingError;
 use crate::model::moving::stability::{assess, StabilityAssessment, VerdictParams};
 use crate::model::moving::stability_map::{parallel_rows, GridAxis, StringWorkspace};
 use crate::model::moving::string_data::MovingStringData;
@@ -12,10 +13,11 @@ use crate::model::moving::string_model::MovingStringModel;
 use crate::solve::quadratic_eigen::QuadraticEigenParams;
 
 /// The result of a sweep.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Sweep {
     pub axis: GridAxis,
-    /// The eigenvalues at every point, in the solver's order.
+    /// The eigenvalues at every point, in the solver's order ([Re, Im] pairs in JSON).
+    #[serde(serialize_with = "crate::model::moving::serialize_complex_rows")]
     pub spectra: Vec<Vec<c64>>,
     pub assessments: Vec<StabilityAssessment>,
     /// The tracked branches.
@@ -30,14 +32,14 @@ pub fn string_sweep(
     eigen: QuadraticEigenParams,
     verdict: &VerdictParams,
     threads: usize,
-) -> Result<Sweep, MovingError> {
+) -> Result<Sweep, Error> {
     verdict.validate()?;
     base.validate()?;
     let (spectra, _) = parallel_rows(
         axis.values.len(),
         threads,
         || StringWorkspace::new(model, base),
-        |i, ws: &mut StringWorkspace| -> Result<Vec<c64>, MovingError> {
+        |i, ws: &mut StringWorkspace| -> Result<Vec<c64>, Error> {
             let mut d = *base;
             axis.parameter.set(&mut d, axis.values[i])?;
             Ok(ws.eigenvalues(model, &d, eigen)?.to_vec())

@@ -12,11 +12,11 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::normal_law::NormalLaw;
+use crate::contact::normal_law::{FoundationLaw, NormalLaw};
 use crate::error::{require_positive, InputError};
-use crate::field::Field;
-use crate::material::plane_law::PlaneLaw;
-use crate::mesh::triangle::{RectangleSide, TriangleMesh};
+use crate::field::{Expression, Field};
+use crate::material::plane_law::{IsotropicLinear, PlaneLaw};
+use crate::mesh::triangle::{Diagonal, RectangleSide, TriangleMesh};
 
 /// A closure deciding whether a boundary point (an edge midpoint) belongs to a boundary part.
 pub type BoundaryPredicate = Arc<dyn Fn([f64; 2]) -> bool + Send + Sync>;
@@ -224,5 +224,79 @@ impl PlaneProblem {
     /// Whether A and B are both linear (the model then factors once and condenses the contact).
     pub fn is_linear(&self) -> bool {
         self.viscosity.as_linear().is_some() && self.elasticity.as_linear().is_some()
+    }
+}
+
+/// What varies between the runs of the paper's Test 2D (Fernández & Sofonea 2004, §4.2;
+/// docs/quasistatic.md, "Test 2D"): the square Ω = (0, 6)² of a Kelvin–Voigt material with
+///
+///   A τ = 2η τ + μ tr(τ) I (η = 20, μ = 30),  B plane stress (E = 100, κ = 0.3),
+///
+/// held on the lateral sides Γ1 (clamped, or on rollers u_x = 0: the two readings of "the
+/// horizontal displacements vanish"), loaded on the top Γ2 by f2 = (0, −10 (6 − x) t), f0 = 0,
+/// u0 = 0, T = 1, and resting on the bottom Γ3 on the damped foundation
+/// p_ν(r) = β r_+ + p0 (the lubricated law (2.8), p0 = 2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Test2dParams {
+    /// Squares per side (the mesh is `divisions` × `divisions` squares, each cut along the
+    /// rising diagonal).
+    pub divisions: usize,
+    /// The damper's β of (2.8).
+    pub beta: f64,
+    /// The reading of Γ1.
+    pub support: Support,
+    pub integration: ContactIntegration,
+}
+
+impl Default for Test2dParams {
+    /// The paper's figures: β = 1000, clamped sides, 2-point Gauss on Γ3, 12 × 12 squares.
+    fn default() -> Self {
+        Self {
+            divisions: 12,
+            beta: 1000.0,
+            support: Support::Clamped,
+            integration: ContactIntegration::Gauss2,
+        }
+    }
+}
+
+impl PlaneProblem {
+    /// The paper's Test 2D with `p`'s mesh, β, Γ1 reading and contact integration.
+    pub fn fernandez_sofonea_test_2d(p: Test2dParams) -> Result<Self, InputError> {
+        let problem = PlaneProblem {
+            mesh: TriangleMesh::rectangle(
+                [0.0, 0.0],
+                [6.0, 6.0],
+                [p.divisions, p.divisions],
+                Diagonal::Up,
+            )?,
+            final_time: 1.0,
+            viscosity: Arc::new(IsotropicLinear::viscosity(30.0, 20.0)),
+            elasticity: Arc::new(IsotropicLinear::plane_stress(100.0, 0.3)),
+            body_force: [Field::Constant(0.0), Field::Constant(0.0)],
+            dirichlet: vec![DirichletPart {
+                boundary: BoundarySelector::Sides(vec![RectangleSide::Left, RectangleSide::Right]),
+                support: p.support,
+            }],
+            traction: vec![TractionPart {
+                boundary: BoundarySelector::side(RectangleSide::Top),
+                traction: [
+                    Field::Constant(0.0),
+                    Field::Expression(Expression::parse("traction.value[1]", "-10*(6 - x)*t")?),
+                ],
+            }],
+            contact: Some(ContactPart {
+                boundary: BoundarySelector::side(RectangleSide::Bottom),
+                law: Arc::new(FoundationLaw::Lubricated {
+                    beta: p.beta,
+                    p0: Field::Constant(2.0),
+                }),
+                integration: p.integration,
+                source: None,
+            }),
+            initial_displacement: [Field::Constant(0.0), Field::Constant(0.0)],
+        };
+        problem.validate()?;
+        Ok(problem)
     }
 }

@@ -443,40 +443,21 @@ mod tests {
     //! vertical translation free and fix it through one Γ3 dof; contact weights integrate the
     //! boundary length; the load of a constant traction is exact.
     use super::*;
-    use crate::contact::normal_law::FoundationLaw;
-    use crate::material::plane_law::IsotropicLinear;
-    use crate::mesh::triangle::{Diagonal, RectangleSide, TriangleMesh};
-    use crate::model::quasistatic::plane::{
-        BoundarySelector, ContactPart, DirichletPart, Support, TractionPart,
-    };
-    use std::sync::Arc;
+    use crate::model::quasistatic::plane::Support;
+    use crate::model::quasistatic::plane::Test2dParams;
 
+    /// Test 2D on 4 × 4 squares with the constant traction f2 = (0, −10) on the top (resultant
+    /// −60 over the side of length 6).
     fn problem(support: Support, integration: ContactIntegration) -> PlaneProblem {
-        PlaneProblem {
-            mesh: TriangleMesh::rectangle([0.0, 0.0], [6.0, 6.0], [4, 4], Diagonal::Up).unwrap(),
-            final_time: 1.0,
-            viscosity: Arc::new(IsotropicLinear::viscosity(30.0, 20.0)),
-            elasticity: Arc::new(IsotropicLinear::plane_stress(100.0, 0.3)),
-            body_force: [Field::Constant(0.0), Field::Constant(0.0)],
-            dirichlet: vec![DirichletPart {
-                boundary: BoundarySelector::Sides(vec![RectangleSide::Left, RectangleSide::Right]),
-                support,
-            }],
-            traction: vec![TractionPart {
-                boundary: BoundarySelector::side(RectangleSide::Top),
-                traction: [Field::Constant(0.0), Field::Constant(-10.0)],
-            }],
-            contact: Some(ContactPart {
-                boundary: BoundarySelector::side(RectangleSide::Bottom),
-                law: Arc::new(FoundationLaw::Lubricated {
-                    beta: 1000.0,
-                    p0: Field::Constant(2.0),
-                }),
-                integration,
-                source: None,
-            }),
-            initial_displacement: [Field::Constant(0.0), Field::Constant(0.0)],
-        }
+        let mut p = PlaneProblem::fernandez_sofonea_test_2d(Test2dParams {
+            divisions: 4,
+            support,
+            integration,
+            ..Default::default()
+        })
+        .unwrap();
+        p.traction[0].traction = [Field::Constant(0.0), Field::Constant(-10.0)];
+        p
     }
 
     #[test]

@@ -4,12 +4,13 @@
 
 use serde::Serialize;
 
-use crate::error::{Error, InputError};
+use crate::error::InputError;
 use crate::fem::triangle_p1::Sym2;
 use crate::material::plane_law::von_mises_plane_stress;
 use crate::model::quasistatic::plane::{EdgeRole, PlaneProblem};
 use crate::model::quasistatic::plane_dofs::PlaneDofs;
-use crate::model::quasistatic::plane_solver::{PlaneObserver, PlaneSolver, PlaneStats, PlaneStep};
+use crate::model::quasistatic::plane_step::{PlaneObserver, PlaneStats, PlaneStep};
+use crate::time::grid::TimeGrid;
 
 /// What to record.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -115,9 +116,14 @@ pub struct PlaneRecorder {
 }
 
 impl PlaneRecorder {
-    /// Checks the request against the solver's grid.
-    pub fn new(solver: &PlaneSolver, request: &PlaneOutputRequest) -> Result<Self, InputError> {
-        let grid = solver.grid();
+    /// Checks the request against a run's grid (the problem and its dofs as the solver set them
+    /// up).
+    pub fn new(
+        problem: &PlaneProblem,
+        dofs: &PlaneDofs,
+        grid: &TimeGrid,
+        request: &PlaneOutputRequest,
+    ) -> Result<Self, InputError> {
         let mut steps = Vec::new();
         for (i, &t) in request.snapshot_times.iter().enumerate() {
             steps.push(grid.index_of(t).ok_or_else(|| {
@@ -128,8 +134,8 @@ impl PlaneRecorder {
                 )
             })?);
         }
-        let problem = solver.problem().clone();
-        let dofs = solver.dofs().clone();
+        let problem = problem.clone();
+        let dofs = dofs.clone();
         let solution = PlaneSolution {
             nodes: problem.mesh.nodes().to_vec(),
             triangles: problem.mesh.triangles().to_vec(),
@@ -202,14 +208,5 @@ impl PlaneObserver for PlaneRecorder {
                 });
             }
         }
-    }
-}
-
-impl PlaneSolver {
-    /// Runs and records the snapshots of `request` and the contact histories.
-    pub fn solve(&mut self, request: &PlaneOutputRequest) -> Result<PlaneSolution, Error> {
-        let mut recorder = PlaneRecorder::new(self, request)?;
-        let stats = self.run(&mut recorder)?;
-        Ok(recorder.finish(stats))
     }
 }

@@ -16,6 +16,8 @@ use crate::model::quasistatic::plane_condensed::{assemble_linear, CondensedStep}
 use crate::model::quasistatic::plane_contact::{ContactFailure, ContactNewtonParams};
 use crate::model::quasistatic::plane_dofs::PlaneDofs;
 use crate::model::quasistatic::plane_newton::{NewtonFailure, NewtonParams, NewtonStep};
+use crate::model::quasistatic::plane_output::{PlaneOutputRequest, PlaneRecorder, PlaneSolution};
+pub use crate::model::quasistatic::plane_step::{PlaneObserver, PlaneStats, PlaneStep};
 use crate::model::quasistatic::scheme::TimeScheme;
 use crate::time::grid::TimeGrid;
 
@@ -42,59 +44,6 @@ pub struct PlaneParams {
     /// yet be balanced by the contact), skip them — the body stays at u0 — and start the scheme at
     /// the first step that has one. Without it, such a step is a [`SolveError::NoEquilibrium`].
     pub start_at_first_equilibrium: bool,
-}
-
-/// Statistics of a run.
-#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
-pub struct PlaneStats {
-    /// `condensed` or `newton`.
-    pub path: String,
-    pub dofs: usize,
-    pub contact_points: usize,
-    pub steps: usize,
-    /// Sparse numeric factorizations (condensed: one per distinct step size; Newton: one per
-    /// iteration).
-    pub factorizations: usize,
-    /// Stored entries of the Cholesky factor.
-    pub factor_nnz: usize,
-    /// Dense factorizations of the reduced contact Jacobian (condensed path).
-    pub contact_factorizations: usize,
-    pub newton_iterations: usize,
-    pub max_newton_iterations: usize,
-    /// Steps skipped for lack of equilibrium (with `start_at_first_equilibrium`).
-    pub skipped_steps: Vec<usize>,
-    /// Rigid motions left free by Γ1 (carried by the contact).
-    pub free_rigid_motions: usize,
-}
-
-/// What the observer sees after each step (and at t_0).
-#[derive(Debug, Clone, Copy)]
-pub struct PlaneStep<'a> {
-    pub n: usize,
-    pub t: f64,
-    pub data_time: f64,
-    pub k: f64,
-    /// u_n at all nodes, interleaved (u_x, u_y).
-    pub u: &'a [f64],
-    /// w_n at all nodes (`None` at n = 0).
-    pub w: Option<&'a [f64]>,
-    /// Normal velocities and pressures p_ν at the contact points.
-    pub contact_velocity: &'a [f64],
-    pub contact_pressure: &'a [f64],
-    pub newton_iterations: usize,
-    /// The step was skipped for lack of equilibrium.
-    pub skipped: bool,
-}
-
-/// Receives every step.
-pub trait PlaneObserver {
-    fn observe(&mut self, step: &PlaneStep<'_>);
-}
-
-impl<F: FnMut(&PlaneStep<'_>)> PlaneObserver for F {
-    fn observe(&mut self, step: &PlaneStep<'_>) {
-        self(step)
-    }
 }
 
 /// A plane problem discretized in space and time.
@@ -295,6 +244,14 @@ impl PlaneSolver {
                 out[2 * t[p / 2] + p % 2] -= f[p];
             }
         }
+    }
+
+    /// Runs and records the snapshots of `request` and the contact histories
+    /// ([`PlaneRecorder`]).
+    pub fn solve(&mut self, request: &PlaneOutputRequest) -> Result<PlaneSolution, Error> {
+        let mut recorder = PlaneRecorder::new(&self.problem, &self.dofs, &self.grid, request)?;
+        let stats = self.run(&mut recorder)?;
+        Ok(recorder.finish(stats))
     }
 
     /// Runs from t_0 to t_N, calling `observer` at n = 0 and after every step.

@@ -1,4 +1,4 @@
-//! The explicit scheme's step bound in 2D (shared/spec/quasistatic.md, stability note): with
+//! The explicit scheme's step bound in 2D (docs/quasistatic.md, stability note): with
 //! linear A and B the explicit update is u_n = (I − k A⁻¹B) u_{n−1} + …, stable only while
 //! k λ_max(A⁻¹B) < 2, with λ_max the largest eigenvalue of the symmetric pencil K_B x = λ K_A x on
 //! the solved dofs.

@@ -3,10 +3,12 @@
 
 use serde::Serialize;
 
-use crate::error::{Error, InputError};
+use crate::error::InputError;
 use crate::fem::p1_interval::evaluate;
 use crate::mesh::interval::IntervalMesh;
-use crate::model::quasistatic::rod_solver::{RodObserver, RodSolver, RodStats, RodStep};
+use crate::model::quasistatic::rod_step::{RodObserver, RodStats, RodStep};
+use crate::model::quasistatic::scheme::TimeScheme;
+use crate::time::grid::TimeGrid;
 
 /// What to record besides the contact-end histories.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -74,9 +76,13 @@ pub struct RodRecorder {
 }
 
 impl RodRecorder {
-    /// Checks the request against the solver's mesh and grid.
-    pub fn new(solver: &RodSolver, request: &RodOutputRequest) -> Result<Self, InputError> {
-        let grid = solver.grid();
+    /// Checks the request against a run's mesh and grid.
+    pub fn new(
+        mesh: &IntervalMesh,
+        grid: &TimeGrid,
+        scheme: TimeScheme,
+        request: &RodOutputRequest,
+    ) -> Result<Self, InputError> {
         let mut snapshot_steps = Vec::with_capacity(request.snapshot_times.len());
         for (i, &t) in request.snapshot_times.iter().enumerate() {
             let n = grid.index_of(t).ok_or_else(|| {
@@ -91,7 +97,7 @@ impl RodRecorder {
             })?;
             snapshot_steps.push(n);
         }
-        let length = solver.mesh().length();
+        let length = mesh.length();
         for (i, &x) in request.probes.iter().enumerate() {
             if !(x.is_finite() && (0.0..=length).contains(&x)) {
                 return Err(InputError::new(
@@ -103,12 +109,12 @@ impl RodRecorder {
         }
         let steps = grid.steps() + 1;
         Ok(Self {
-            mesh: solver.mesh().clone(),
+            mesh: mesh.clone(),
             snapshots: vec![None; snapshot_steps.len()],
             snapshot_steps,
             solution: RodSolution {
-                scheme: solver.scheme().name().to_string(),
-                nodes: solver.mesh().nodes().to_vec(),
+                scheme: scheme.name().to_string(),
+                nodes: mesh.nodes().to_vec(),
                 times: Vec::with_capacity(steps),
                 end_displacement: Vec::with_capacity(steps),
                 end_velocity: Vec::with_capacity(steps),
@@ -158,14 +164,5 @@ impl RodObserver for RodRecorder {
                 });
             }
         }
-    }
-}
-
-impl RodSolver {
-    /// Runs and records the contact-end histories, the probes and the snapshots of `request`.
-    pub fn solve(&self, request: &RodOutputRequest) -> Result<RodSolution, Error> {
-        let mut recorder = RodRecorder::new(self, request)?;
-        let stats = self.run(&mut recorder)?;
-        Ok(recorder.finish(stats))
     }
 }

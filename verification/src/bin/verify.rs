@@ -6,6 +6,7 @@
 //! - `verify --case ID [--case ID]` selected cases
 //! - `verify --list`                the catalogue
 //! - `verify scene FILE.toml --out DIR`   run a user's scene
+//! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -13,10 +14,12 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 
-use contactlab_verify::case::{Case, Tier};
-use contactlab_verify::report::markdown;
-use contactlab_verify::report::metadata::Metadata;
-use contactlab_verify::run::{run_case, RunContext};
+use contactlab_verify::core::case::{Case, Tier};
+use contactlab_verify::core::context::RunContext;
+use contactlab_verify::core::report::compare::compare;
+use contactlab_verify::core::report::markdown;
+use contactlab_verify::core::report::metadata::Metadata;
+use contactlab_verify::registry;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -59,6 +62,18 @@ enum Command {
         #[arg(long, default_value = "scene-out")]
         out: PathBuf,
     },
+    /// Compare two report directories: every number (and every non-prose text) must be equal;
+    /// timings are left out. Exit 1 when they differ.
+    Compare {
+        /// The reports before a change.
+        before: PathBuf,
+        /// The reports after it.
+        after: PathBuf,
+        /// Further runs of the code of BEFORE (repeatable): leaves that differ between BEFORE
+        /// and any of them are noise.
+        #[arg(long)]
+        noise: Vec<PathBuf>,
+    },
 }
 
 fn repository_root() -> PathBuf {
@@ -68,18 +83,43 @@ fn repository_root() -> PathBuf {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    if let Some(Command::Scene { file, out }) = &cli.command {
-        return match contactlab_verify::scene_run::run_scene(file, out) {
-            Ok(summary) => {
-                println!("{summary}");
-                println!("wrote {}", out.display());
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(2)
-            }
-        };
+    match &cli.command {
+        Some(Command::Scene { file, out }) => {
+            return match registry::run_scene(file, out) {
+                Ok(summary) => {
+                    println!("{summary}");
+                    println!("wrote {}", out.display());
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            };
+        }
+        Some(Command::Compare {
+            before,
+            after,
+            noise,
+        }) => {
+            return match compare(before, after, noise) {
+                Ok(c) => {
+                    print!("{}", c.render());
+                    if c.same() {
+                        println!("same numbers");
+                        ExitCode::SUCCESS
+                    } else {
+                        println!("the reports differ");
+                        ExitCode::from(1)
+                    }
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            };
+        }
+        None => {}
     }
     if let Some(n) = cli.threads {
         if let Err(e) = rayon::ThreadPoolBuilder::new()
@@ -95,7 +135,7 @@ fn main() -> ExitCode {
         .cases_dir
         .clone()
         .unwrap_or_else(|| root.join("verification/cases"));
-    let cases = match Case::load_all(&cases_dir) {
+    let cases = match registry::load_all(&cases_dir) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
@@ -153,7 +193,7 @@ fn main() -> ExitCode {
     let start = Instant::now();
     let mut reports = Vec::new();
     for case in selected {
-        let report = run_case(case, &ctx);
+        let report = registry::run(case, &ctx);
         println!(
             "{:<36} {:<5} {:>7.2} s  {}",
             report.id,

@@ -1,62 +1,85 @@
-//! The dynamic-contact case family (issue: dynamic contact with energy-consistent time
-//! integration). Each kind has its own file with its TOML format (`check`) and runner (`run`);
-//! [`audit`] holds what every dynamic case shares: the energy-audit plots and gates.
+//! Dynamic contact with energy-consistent time integration (Barboteu–Danan–Sofonea 2015,
+//! "BDS"; Hauret–Le Tallec 2006, "HLT"; docs/dynamic.md): bars and plane-strain bodies against a
+//! rigid foundation, Newmark, the midpoint rule and Gonzalez's scheme, every run audited for the
+//! discrete energy identities.
+//!
+//! | kind | file | what it establishes |
+//! |---|---|---|
+//! | `dynamic_signorini_bar` | [`cases::signorini_bar`] | the periodic Signorini bar against its exact solution: rates by treatment and scheme, energy conservation |
+//! | `dynamic_bar_wall` | [`cases::bar_wall`] | a free bar hitting a rigid wall: contact time, plateau stress, rebound, energy returned |
+//! | `dynamic_manufactured` | [`cases::manufactured`] | 2D elastodynamics with persistent compliance contact: orders in k and h, identities at round-off |
+//! | `dynamic_impact` | [`cases::impact`] | BDS §1.7.1–1.7.2 impacts: identities per step, friction and stage-(b) work, grid convergence |
+//! | `dynamic_extremes` | [`cases::extremes`] | blow-up of the midpoint rule, penalty 1 … 1e14, impact speeds, large steps |
+//! | `dynamic_performance` | [`cases::performance`] | cost per step against dofs on both solver paths, the ring impact's time |
+//!
+//! [`study`] holds what every kind shares: the audited run, its plots and gates.
 
-pub mod audit;
-pub mod bar_common;
-pub mod bar_runs;
-pub mod bar_wall;
-pub mod extremes;
-pub mod impact;
-pub mod impact_gci;
-pub mod impact_plots;
-pub mod impact_runs;
-pub mod manufactured;
-pub mod manufactured_errors;
-pub mod performance;
-pub mod signorini_bar;
+pub mod cases;
+pub mod errors;
+pub mod scene;
+pub mod study;
 
-use crate::case::{Case, CaseError};
-use crate::report::case_report::CaseReport;
-use crate::run::RunContext;
+use std::path::Path;
 
-/// The case kinds of the family.
-pub const KINDS: [&str; 6] = [
-    "dynamic_signorini_bar",
-    "dynamic_bar_wall",
-    "dynamic_manufactured",
-    "dynamic_impact",
-    "dynamic_extremes",
-    "dynamic_performance",
-];
+use contactlab::scene::Scene;
 
-/// Checks a case of the family with its kind's format.
-pub fn check_case(case: &Case) -> Result<(), CaseError> {
-    match case.header.kind.as_str() {
-        "dynamic_signorini_bar" => signorini_bar::check(case),
-        "dynamic_bar_wall" => bar_wall::check(case),
-        "dynamic_manufactured" => manufactured::check(case),
-        "dynamic_impact" => impact::check(case),
-        "dynamic_extremes" => extremes::check(case),
-        "dynamic_performance" => performance::check(case),
-        other => Err(CaseError::Invalid {
-            path: case.path.display().to_string(),
-            field: "kind".into(),
-            value: other.into(),
-            expected: format!("one of {}", KINDS.join(", ")),
-        }),
+use crate::core::case::Case;
+use crate::core::context::RunContext;
+use crate::core::format::CaseError;
+use crate::core::report::case_report::CaseReport;
+use crate::family::Family;
+
+/// The dynamic-contact family.
+pub struct Dynamic;
+
+impl Family for Dynamic {
+    fn name(&self) -> &'static str {
+        "dynamic"
     }
-}
 
-/// Runs a case of the family.
-pub fn run_case(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
-    match case.header.kind.as_str() {
-        "dynamic_signorini_bar" => signorini_bar::run(case, ctx, report),
-        "dynamic_bar_wall" => bar_wall::run(case, ctx, report),
-        "dynamic_manufactured" => manufactured::run(case, ctx, report),
-        "dynamic_impact" => impact::run(case, ctx, report),
-        "dynamic_extremes" => extremes::run(case, ctx, report),
-        "dynamic_performance" => performance::run(case, ctx, report),
-        other => Err(format!("unknown dynamic case kind {other}")),
+    fn kinds(&self) -> &'static [&'static str] {
+        &[
+            "dynamic_signorini_bar",
+            "dynamic_bar_wall",
+            "dynamic_manufactured",
+            "dynamic_impact",
+            "dynamic_extremes",
+            "dynamic_performance",
+        ]
+    }
+
+    fn check(&self, case: &Case) -> Result<(), CaseError> {
+        match case.header.kind.as_str() {
+            "dynamic_signorini_bar" => cases::signorini_bar::check(case),
+            "dynamic_bar_wall" => cases::bar_wall::check(case),
+            "dynamic_manufactured" => cases::manufactured::check(case),
+            "dynamic_impact" => cases::impact::check(case),
+            "dynamic_extremes" => cases::extremes::check(case),
+            "dynamic_performance" => cases::performance::check(case),
+            _ => Err(case.unknown_kind(self.kinds())),
+        }
+    }
+
+    fn run(&self, case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+        match case.header.kind.as_str() {
+            "dynamic_signorini_bar" => cases::signorini_bar::run(case, ctx, report),
+            "dynamic_bar_wall" => cases::bar_wall::run(case, ctx, report),
+            "dynamic_manufactured" => cases::manufactured::run(case, ctx, report),
+            "dynamic_impact" => cases::impact::run(case, ctx, report),
+            "dynamic_extremes" => cases::extremes::run(case, ctx, report),
+            "dynamic_performance" => cases::performance::run(case, ctx, report),
+            _ => Err(case.unknown_kind(self.kinds()).to_string()),
+        }
+    }
+
+    fn models(&self) -> &'static [&'static str] {
+        &["dynamic"]
+    }
+
+    fn write_scene(&self, scene: &Scene, source: &str, out: &Path) -> Result<String, String> {
+        match scene {
+            Scene::Dynamic(s) => scene::write_scene(s, source, out),
+            _ => Err(format!("{source}: not a dynamic scene")),
+        }
     }
 }

@@ -4,8 +4,11 @@
 //!   (derived here; the paper's two, (4.6) and (4.7), are members).
 //! - `rod_paper`: the paper's (4.6) and (4.7) written out literally, to check the family against.
 //! - `signorini_bar`: the exact 1D benchmarks of dynamic contact (periodic Signorini bar, free bar
-//!   hitting a rigid wall; `shared/spec/dynamic.md` §5).
+//!   hitting a rigid wall; docs/dynamic.md §5).
+//! - `moving_string`: eigenvalues of the axially moving string, alone and with an oscillator
+//!   (Hetzler 2009, §4.2.1; docs/moving_continua.md).
 
+pub mod moving_string;
 pub mod rod_constant_data;
 pub mod rod_paper;
 pub mod signorini_bar;

@@ -1,4 +1,4 @@
-//! Exact 1D benchmarks of dynamic contact (`shared/spec/dynamic.md` §5).
+//! Exact 1D benchmarks of dynamic contact (`docs/dynamic.md` §5).
 //!
 //! **The periodic Signorini bar** ([`PeriodicSignoriniBar`]; the benchmark of GetFEM's 1D dynamic
 //! contact demo, also Doyen–Ern–Piperno 2011): x ∈ (0, 1), ρ = E = 1,

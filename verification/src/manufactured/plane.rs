@@ -7,7 +7,7 @@
 //!   f0 = −Div σ,   f2 = σν on Γ2,   g = σν + p_ν(u̇_ν) ν on Γ3,
 //!   σ = A(ε(u̇)) + B(ε(u)),   Div σ_i = Σ_k [T_A(ε(u̇)) ∂_k ε(u̇) + T_B(ε(u)) ∂_k ε(u)]_{ik},
 //!
-//! so that −σ_ν = p_ν(u̇_ν) − g_ν and σ_τ = g_τ on Γ3 (shared/spec/quasistatic.md,
+//! so that −σ_ν = p_ν(u̇_ν) − g_ν and σ_τ = g_τ on Γ3 (docs/quasistatic.md,
 //! §Manufactured solutions). Derivatives come from three hyper-hyper-dual evaluations per point:
 //! (x, x, t) gives u_x, u_xx, u_t, u_xt, u_xxt; (y, y, t) the same in y; (x, y, t) gives u_xy,
 //! u_xyt. The error norms need only the first derivatives (one evaluation).

@@ -1,88 +1,128 @@
-//! The verification of the moving-continuum models (Hetzler 2009; `shared/spec/moving-continua.md`):
-//! case kinds starting with `moving_`, their runners, exact solutions and plots.
+//! Moving continua with contacts and sliding friction (Hetzler 2009; docs/moving_continua.md):
+//! eigenvalue studies of the axially moving string (with an oscillator, ideal or penalty contact,
+//! friction) and of a particle on a rotating disc, their stability verdicts and maps.
 //!
-//! | kind | runner | what it establishes |
+//! | kind | file | what it establishes |
 //! |---|---|---|
-//! | `moving_string` | [`string_case`] | ω_n = nπ(1 − v̄²) with observed rates in N and h (sine, P1, Hermite), zero real parts, the divergence boundary v̄ = 1, loci and Campbell diagram |
-//! | `moving_oscillator` | [`oscillator_case`] | the string with an oscillator against the exact characteristic equation: rates, tracked branches through veering |
-//! | `moving_symmetry` | [`symmetry_case`] | G = −Gᵀ and K_T = K_Tᵀ exactly when R_P, R_Q vanish (Figs 10–12), both directions |
-//! | `moving_penalty` | [`penalty_case`] | penalty → ideal contact at rate 1 in 1/k̄_p; with friction, the nominal circulatory parameter μ k̄_p h̄ and the flutter boundary |
-//! | `moving_disc` | [`disc_case`] | the friction damping μN/(Ω r0) recovered from the eigenvalues across Ω |
-//! | `moving_time_check` | [`time_case`] | every kind of verdict confirmed by time integration: observed growth rate = max Re λ |
-//! | `moving_extremes` | [`extremes_case`] | v̄ → 1, k̄_p → 10¹⁵, undamped gyroscopic–circulatory systems, near-defective eigenvalues |
-//! | `moving_map` | [`map_case`] | the 200 × 200 map under its time budget, deterministic, every point checked against faer, boundaries converged in N |
-//!
-//! Each runner writes its detailed numbers to `<out>/<case id>/data.json`.
+//! | `moving_string` | [`cases::string`] | ω_n = nπ(1 − v̄²) with observed rates in N and h (sine, P1, Hermite), zero real parts, the divergence boundary v̄ = 1, loci and Campbell diagram |
+//! | `moving_oscillator` | [`cases::oscillator`] | the string with an oscillator against the exact characteristic equation: rates, tracked branches through veering |
+//! | `moving_symmetry` | [`cases::symmetry`] | G = −Gᵀ and K_T = K_Tᵀ exactly when R_P, R_Q vanish (Figs 10–12), both directions |
+//! | `moving_penalty` | [`cases::penalty`] | penalty → ideal contact at rate 1 in 1/k̄_p; with friction, the nominal circulatory parameter μ k̄_p h̄ and the flutter boundary |
+//! | `moving_disc` | [`cases::disc`] | the friction damping μN/(Ω r0) recovered from the eigenvalues across Ω |
+//! | `moving_time_check` | [`cases::time_check`] | every kind of verdict confirmed by time integration: observed growth rate = max Re λ |
+//! | `moving_extremes` | [`cases::extremes`] | v̄ → 1, k̄_p → 10¹⁵, undamped gyroscopic–circulatory systems, near-defective eigenvalues |
+//! | `moving_map` | [`cases::map`] | the 200 × 200 map, deterministic, every point checked against faer, boundaries converged in N |
 
-pub mod disc_case;
-pub mod exact;
-pub mod extremes_case;
-pub mod format;
-pub mod growth;
-pub mod map_case;
-pub mod oscillator_case;
-pub mod penalty_case;
+pub mod cases;
+pub mod errors;
 pub mod plots;
 pub mod scene;
-pub mod string_case;
-pub mod symmetry_case;
-pub mod time_case;
+pub mod study;
 
-use crate::case::{Case, CaseError};
-use crate::report::case_report::CaseReport;
-use crate::run::RunContext;
+use std::path::Path;
 
-/// The case kinds of this module.
-pub const KINDS: [&str; 8] = [
-    "moving_string",
-    "moving_oscillator",
-    "moving_symmetry",
-    "moving_penalty",
-    "moving_disc",
-    "moving_time_check",
-    "moving_extremes",
-    "moving_map",
-];
+use contactlab::scene::Scene;
 
-/// Checks a `moving_*` case with its kind's format.
-pub fn check_case(case: &Case) -> Result<(), CaseError> {
-    let p = case.path.as_path();
-    match case.header.kind.as_str() {
-        "moving_string" => format::parse::<string_case::StringCase>(case).map(|c| c.check(p))?,
-        "moving_oscillator" => {
-            format::parse::<oscillator_case::OscillatorCase>(case).map(|c| c.check(p))?
-        }
-        "moving_symmetry" => {
-            format::parse::<symmetry_case::SymmetryCase>(case).map(|c| c.check(p))?
-        }
-        "moving_penalty" => format::parse::<penalty_case::PenaltyCase>(case).map(|c| c.check(p))?,
-        "moving_disc" => format::parse::<disc_case::DiscCase>(case).map(|c| c.check(p))?,
-        "moving_time_check" => format::parse::<time_case::TimeCase>(case).map(|c| c.check(p))?,
-        "moving_extremes" => {
-            format::parse::<extremes_case::ExtremesCase>(case).map(|c| c.check(p))?
-        }
-        "moving_map" => format::parse::<map_case::MapCase>(case).map(|c| c.check(p))?,
-        other => Err(CaseError::Invalid {
-            path: p.display().to_string(),
-            field: "kind".into(),
-            value: other.into(),
-            expected: format!("one of {}", KINDS.join(", ")),
-        }),
-    }
+use crate::core::case::Case;
+use crate::core::context::RunContext;
+use crate::core::format::CaseError;
+use crate::core::report::case_report::CaseReport;
+use crate::family::Family;
+use cases::disc::DiscCase;
+use cases::extremes::ExtremesCase;
+use cases::map::MapCase;
+use cases::oscillator::OscillatorCase;
+use cases::penalty::PenaltyCase;
+use cases::string::StringCase;
+use cases::symmetry::SymmetryCase;
+use cases::time_check::TimeCase;
+
+/// The moving-continuum family.
+pub struct Moving;
+
+/// A case body parsed into its kind's format `T` and checked by `check`.
+fn checked<T: serde::de::DeserializeOwned>(
+    case: &Case,
+    check: impl Fn(&T, &std::path::Path) -> Result<(), CaseError>,
+) -> Result<T, CaseError> {
+    let c: T = case.body()?;
+    check(&c, case.path())?;
+    Ok(c)
 }
 
-/// Runs a `moving_*` case into `report`.
-pub fn run_case(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
-    let e = |e: CaseError| e.to_string();
-    match case.header.kind.as_str() {
-        "moving_string" => string_case::run(&format::parse(case).map_err(e)?, ctx, report),
-        "moving_oscillator" => oscillator_case::run(&format::parse(case).map_err(e)?, ctx, report),
-        "moving_symmetry" => symmetry_case::run(&format::parse(case).map_err(e)?, ctx, report),
-        "moving_penalty" => penalty_case::run(&format::parse(case).map_err(e)?, ctx, report),
-        "moving_disc" => disc_case::run(&format::parse(case).map_err(e)?, ctx, report),
-        "moving_time_check" => time_case::run(&format::parse(case).map_err(e)?, ctx, report),
-        "moving_extremes" => extremes_case::run(&format::parse(case).map_err(e)?, ctx, report),
-        "moving_map" => map_case::run(&format::parse(case).map_err(e)?, ctx, report),
-        other => Err(format!("unknown moving case kind {other}")),
+impl Family for Moving {
+    fn name(&self) -> &'static str {
+        "moving"
+    }
+
+    fn kinds(&self) -> &'static [&'static str] {
+        &[
+            "moving_string",
+            "moving_oscillator",
+            "moving_symmetry",
+            "moving_penalty",
+            "moving_disc",
+            "moving_time_check",
+            "moving_extremes",
+            "moving_map",
+        ]
+    }
+
+    fn check(&self, case: &Case) -> Result<(), CaseError> {
+        match case.header.kind.as_str() {
+            "moving_string" => checked(case, StringCase::check).map(|_| ()),
+            "moving_oscillator" => checked(case, OscillatorCase::check).map(|_| ()),
+            "moving_symmetry" => checked(case, SymmetryCase::check).map(|_| ()),
+            "moving_penalty" => checked(case, PenaltyCase::check).map(|_| ()),
+            "moving_disc" => checked(case, DiscCase::check).map(|_| ()),
+            "moving_time_check" => checked(case, TimeCase::check).map(|_| ()),
+            "moving_extremes" => checked(case, ExtremesCase::check).map(|_| ()),
+            "moving_map" => checked(case, MapCase::check).map(|_| ()),
+            _ => Err(case.unknown_kind(self.kinds())),
+        }
+    }
+
+    fn run(&self, case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+        let e = |e: CaseError| e.to_string();
+        match case.header.kind.as_str() {
+            "moving_string" => {
+                cases::string::run(&checked(case, StringCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_oscillator" => cases::oscillator::run(
+                &checked(case, OscillatorCase::check).map_err(e)?,
+                ctx,
+                report,
+            ),
+            "moving_symmetry" => {
+                cases::symmetry::run(&checked(case, SymmetryCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_penalty" => {
+                cases::penalty::run(&checked(case, PenaltyCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_disc" => {
+                cases::disc::run(&checked(case, DiscCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_time_check" => {
+                cases::time_check::run(&checked(case, TimeCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_extremes" => {
+                cases::extremes::run(&checked(case, ExtremesCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_map" => {
+                cases::map::run(&checked(case, MapCase::check).map_err(e)?, ctx, report)
+            }
+            _ => Err(case.unknown_kind(self.kinds()).to_string()),
+        }
+    }
+
+    fn models(&self) -> &'static [&'static str] {
+        &["moving_string", "disc_particle"]
+    }
+
+    fn write_scene(&self, scene: &Scene, source: &str, out: &Path) -> Result<String, String> {
+        match scene {
+            Scene::Moving(s) => scene::write_scene(s, source, out),
+            _ => Err(format!("{source}: not a moving-continuum scene")),
+        }
     }
 }

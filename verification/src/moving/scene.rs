@@ -43,8 +43,7 @@ struct SweepJson<'a> {
 }
 
 /// Runs a moving scene and writes its files; returns a one-line summary.
-pub fn run_moving_scene(text: &str, source: &str, out: &Path) -> Result<String, String> {
-    let scene = MovingScene::from_toml_str(text, source).map_err(|e| e.to_string())?;
+pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<String, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let write = |name: &str, json: String| {
         std::fs::write(out.join(name), json)

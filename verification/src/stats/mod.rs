@@ -28,6 +28,7 @@
 //! panics on bad input.
 
 pub mod error_model;
+pub mod lcg;
 pub mod rate_fit;
 
 use statrs::distribution::{ContinuousCDF, StudentsT, StudentsTError};

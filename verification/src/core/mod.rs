@@ -1,0 +1,13 @@
+//! The core of the suite. It knows no model family: a case's header and the format helpers, the
+//! one scene-override mechanism, the run context, the sweep driver and convergence studies, gates,
+//! and reports.
+
+pub mod case;
+pub mod context;
+pub mod convergence;
+pub mod format;
+pub mod gate;
+pub mod overrides;
+pub mod report;
+pub mod study;
+pub mod sweep;

@@ -1,0 +1,447 @@
+//! `moving_oscillator`: the moving string with the oscillator in the bushing (ideal contact, thin
+//! string: friction does no work, Hetzler 2009 §4.2.1, (83)–(86)) against the roots of its exact
+//! characteristic equation (`exact.rs`).
+//!
+//! - Convergence of the lowest coupled frequencies in N (sine) and h (P1, Hermite). The
+//!   eigenfunctions have a kink at ā (the spring's point force): sine coefficients decay like
+//!   k⁻², the best energy-norm error is O(N^{-1/2}) and the eigenvalue error O(N⁻¹); P1 with ā on
+//!   a node represents the kink and keeps O(h²); C¹ Hermite cubics cannot bend at a point and drop
+//!   to the kink's rate.
+//! - Nodal modes: with ā = 1/2 the even string modes do not move the bushing, so
+//!   λ = i nπ(1 − v̄²) (n even) stay exact eigenvalues for any oscillator.
+//! - The Campbell diagram over v̄ with tracked branches (veering between the string modes and the
+//!   oscillator) against the exact roots followed by continuation in v̄.
+
+use std::path::Path;
+
+use nalgebra::Complex;
+use serde::{Deserialize, Serialize};
+
+use contactlab::model::moving::c64;
+use contactlab::model::moving::finite_element_basis::ElementKind;
+use contactlab::model::moving::stability::VerdictParams;
+use contactlab::model::moving::stability_map::GridAxis;
+use contactlab::model::moving::string_data::{
+    ContactModel, MovingStringData, OscillatorData, StringParameter,
+};
+use contactlab::model::moving::string_model::{MovingStringModel, StringDiscretization};
+use contactlab::model::moving::sweep::string_sweep;
+use contactlab::solve::quadratic_eigen::QuadraticEigenParams;
+
+use crate::core::context::RunContext;
+use crate::core::format::CaseError;
+use crate::core::format::{at_least, invalid, positive};
+use crate::core::gate::RateGate;
+use crate::core::gate::{Check, GateVerdict};
+use crate::core::report::case_report::CaseReport;
+use crate::exact::moving_string::{string_eigenvalue, OscillatorCharacteristic};
+use crate::moving::errors::frequencies;
+use crate::moving::plots::{loci_figures, upper_branches};
+use crate::moving::study::{string_eigenvalues, SeriesSelect};
+use crate::plot::{Figure, Series};
+
+/// The case format of `moving_oscillator`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OscillatorCase {
+    pub oscillator: Oscillator,
+    pub convergence: Convergence,
+    #[serde(default)]
+    pub gate: Vec<RateGate<SeriesSelect>>,
+    pub nodal: Nodal,
+    pub campbell: Campbell,
+}
+
+/// `[oscillator]`: c̄, m̄, ā (ideal contact, no friction, no damping).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Oscillator {
+    pub stiffness: f64,
+    pub mass: f64,
+    pub position: f64,
+}
+
+/// `[convergence]`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Convergence {
+    pub speeds: Vec<f64>,
+    pub modes_checked: usize,
+    pub sine_modes: Vec<usize>,
+    pub p1_elements: Vec<usize>,
+    pub hermite_elements: Vec<usize>,
+}
+
+/// `[nodal]`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Nodal {
+    pub speed: f64,
+    /// The even string modes checked.
+    pub modes: Vec<usize>,
+    /// Their residual |F(λ)| relative to |F| at a nearby point, and the discrete eigenvalue's error.
+    pub elements: usize,
+    pub tolerance: f64,
+}
+
+/// `[campbell]`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Campbell {
+    pub elements: usize,
+    pub from: f64,
+    pub to: f64,
+    pub points: usize,
+    pub branches: usize,
+    pub exact_tolerance: f64,
+}
+
+impl OscillatorCase {
+    /// Checks the numbers of the case.
+    pub fn check(&self, p: &Path) -> Result<(), CaseError> {
+        positive(p, "oscillator.stiffness", self.oscillator.stiffness)?;
+        positive(p, "oscillator.mass", self.oscillator.mass)?;
+        if !(self.oscillator.position > 0.0 && self.oscillator.position < 1.0) {
+            return Err(invalid(
+                p,
+                "oscillator.position",
+                self.oscillator.position,
+                "in (0, 1)",
+            ));
+        }
+        let c = &self.convergence;
+        at_least(p, "convergence.speeds", &c.speeds, 1)?;
+        at_least(p, "convergence.sine_modes", &c.sine_modes, 2)?;
+        at_least(p, "convergence.p1_elements", &c.p1_elements, 2)?;
+        at_least(p, "convergence.hermite_elements", &c.hermite_elements, 2)?;
+        for (i, g) in self.gate.iter().enumerate() {
+            g.criteria.check(p, &format!("gate[{i}]"))?;
+        }
+        positive(p, "nodal.tolerance", self.nodal.tolerance)?;
+        positive(p, "campbell.exact_tolerance", self.campbell.exact_tolerance)?;
+        if self.campbell.points < 3 {
+            return Err(invalid(p, "campbell.points", self.campbell.points, ">= 3"));
+        }
+        Ok(())
+    }
+}
+
+fn data(o: &Oscillator, speed: f64, position: f64) -> MovingStringData {
+    MovingStringData {
+        speed,
+        damping: 0.0,
+        oscillator: Some(OscillatorData {
+            stiffness: o.stiffness,
+            mass: o.mass,
+            position,
+            contact: ContactModel::Ideal,
+            friction: 0.0,
+        }),
+    }
+}
+
+#[derive(Debug, Clone, Serialize)]
+struct Level {
+    basis: String,
+    speed: f64,
+    size: usize,
+    h: f64,
+    mode_errors: Vec<f64>,
+    error: f64,
+}
+
+/// Runs the case.
+pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+    let o = &case.oscillator;
+    let c = &case.convergence;
+    let fine = |m: usize| StringDiscretization::FiniteElements {
+        kind: ElementKind::P1,
+        elements: m,
+    };
+    let mut exact_roots = Vec::new();
+    let mut levels = Vec::new();
+    for &v in &c.speeds {
+        let d = data(o, v, o.position);
+        let ch = OscillatorCharacteristic {
+            speed: v,
+            damping: 0.0,
+            stiffness: o.stiffness,
+            mass: o.mass,
+            position: o.position,
+        };
+        // Exact roots from the finest P1 approximation (ā on a node).
+        let guess = frequencies(&string_eigenvalues(
+            fine(c.p1_elements[c.p1_elements.len() - 1]),
+            &d,
+        )?);
+        let mut exact = Vec::new();
+        for &g in guess.iter().take(c.modes_checked) {
+            let r = ch.refine(Complex::new(0.0, g))?;
+            exact.push(r.im);
+            if r.re.abs() > 1e-10 * r.norm() {
+                return Err(format!("exact root {r} is not on the imaginary axis"));
+            }
+        }
+        for w in exact.windows(2) {
+            if (w[1] - w[0]).abs() < 1e-8 * w[1] {
+                return Err(format!("two guesses converged to the same root {}", w[0]));
+            }
+        }
+        let plans: Vec<(&str, usize, f64, StringDiscretization)> = c
+            .sine_modes
+            .iter()
+            .map(|&n| {
+                (
+                    "sine",
+                    n,
+                    1.0 / n as f64,
+                    StringDiscretization::Sine { modes: n },
+                )
+            })
+            .chain(
+                c.p1_elements
+                    .iter()
+                    .map(|&m| ("p1", m, 1.0 / m as f64, fine(m))),
+            )
+            .chain(c.hermite_elements.iter().map(|&m| {
+                (
+                    "hermite",
+                    m,
+                    1.0 / m as f64,
+                    StringDiscretization::FiniteElements {
+                        kind: ElementKind::Hermite,
+                        elements: m,
+                    },
+                )
+            }))
+            .collect();
+        for (basis, size, h, disc) in plans {
+            let f = frequencies(&string_eigenvalues(disc, &d)?);
+            let mode_errors: Vec<f64> = exact
+                .iter()
+                .enumerate()
+                .map(|(k, e)| (f[k] - e).abs() / e)
+                .collect();
+            levels.push(Level {
+                basis: basis.into(),
+                speed: v,
+                size,
+                h,
+                error: mode_errors.iter().copied().fold(0.0, f64::max),
+                mode_errors,
+            });
+        }
+        exact_roots.push((v, exact));
+    }
+    for g in &case.gate {
+        let (basis, v) = g.select.series.split_once('/').unwrap_or(("", ""));
+        let v: f64 = v.parse().unwrap_or(f64::NAN);
+        let sel: Vec<&Level> = levels
+            .iter()
+            .filter(|l| l.basis == basis && l.speed == v)
+            .collect();
+        if sel.is_empty() {
+            return Err(format!("gate series {} matches no run", g.select.series));
+        }
+        let h: Vec<f64> = sel.iter().map(|l| l.h).collect();
+        let e: Vec<f64> = sel.iter().map(|l| l.error).collect();
+        report.gates.push(g.criteria.evaluate(
+            format!(
+                "{basis}, v̄ = {v}: coupled frequency error vs {}",
+                if basis == "sine" { "1/N" } else { "h" }
+            ),
+            &h,
+            &e,
+        ));
+    }
+
+    // Nodal modes at ā = 1/2.
+    let n = &case.nodal;
+    let dn = data(o, n.speed, 0.5);
+    let chn = OscillatorCharacteristic {
+        speed: n.speed,
+        damping: 0.0,
+        stiffness: o.stiffness,
+        mass: o.mass,
+        position: 0.5,
+    };
+    let fnodal = frequencies(&string_eigenvalues(fine(n.elements), &dn)?);
+    let mut checks = Vec::new();
+    let mut nodal_rows = Vec::new();
+    for &m in &n.modes {
+        let exact = string_eigenvalue(m, n.speed);
+        let root = chn.refine(Complex::new(0.0, exact * (1.0 + 1e-4)))?;
+        let nearest = fnodal
+            .iter()
+            .copied()
+            .min_by(|a, b| (a - exact).abs().total_cmp(&(b - exact).abs()))
+            .unwrap_or(f64::NAN);
+        let root_err = (root - Complex::new(0.0, exact)).norm() / exact;
+        checks.push(Check::at_most(
+            &format!("mode {m}: root of F near i·{exact:.6} vs i nπ(1 − v̄²)"),
+            root_err,
+            n.tolerance,
+        ));
+        nodal_rows.push((m, exact, root.im, nearest));
+    }
+    report.gates.push(GateVerdict::from_checks(
+        format!(
+            "ā = 1/2, v̄ = {}: even string modes are exact eigenvalues for any oscillator",
+            n.speed
+        ),
+        "exact",
+        checks,
+        "W_n = e^{inπv̄ξ} sin(nπξ) vanishes at ξ = 1/2 for even n: the bushing does not move",
+    ));
+
+    // Campbell diagram with tracked branches against the exact roots continued in v̄.
+    let cb = &case.campbell;
+    let model =
+        MovingStringModel::new(fine(cb.elements), Default::default()).map_err(|e| e.to_string())?;
+    let axis = GridAxis::linspace(StringParameter::Speed, cb.from, cb.to, cb.points)
+        .map_err(|e| e.to_string())?;
+    let sweep = string_sweep(
+        &model,
+        &data(o, cb.from, o.position),
+        &axis,
+        QuadraticEigenParams::default(),
+        &VerdictParams::default(),
+        0,
+    )
+    .map_err(|e| e.to_string())?;
+    let chosen = upper_branches(&sweep.branches, cb.branches);
+    // The exact branches are continued in v̄ on their own (secant from the linear extrapolation
+    // of the previous two roots), independently of the discrete tracking.
+    let mut exact_branches: Vec<Vec<f64>> = Vec::new();
+    let mut worst: f64 = 0.0;
+    for &b in &chosen {
+        let mut roots: Vec<Complex<f64>> = Vec::new();
+        for (i, &v) in axis.values.iter().enumerate() {
+            let ch = OscillatorCharacteristic {
+                speed: v,
+                damping: 0.0,
+                stiffness: o.stiffness,
+                mass: o.mass,
+                position: o.position,
+            };
+            let guess = match roots.len() {
+                0 => Complex::new(0.0, sweep.branches.branches[b][0].im),
+                1 => roots[0],
+                k => roots[k - 1] * 2.0 - roots[k - 2],
+            };
+            let root = ch.refine(guess)?;
+            let x: c64 = sweep.branches.branches[b][i];
+            worst = worst.max(((x.im - root.im).abs() + x.re.abs()) / root.norm());
+            roots.push(root);
+        }
+        exact_branches.push(roots.iter().map(|r| r.im).collect());
+    }
+    // The smallest relative gap between neighbouring exact branches: a swapped branch would be
+    // off by at least this much.
+    let mut min_gap = f64::INFINITY;
+    for i in 0..axis.values.len() {
+        let mut col: Vec<f64> = exact_branches.iter().map(|b| b[i]).collect();
+        col.sort_by(f64::total_cmp);
+        for w in col.windows(2) {
+            min_gap = min_gap.min((w[1] - w[0]) / w[1]);
+        }
+    }
+    report.gates.push(GateVerdict::from_checks(
+        "tracked branches through veering match the exact roots".into(),
+        "exact",
+        vec![
+            Check::at_most(
+                &format!(
+                    "first {} branches (P1, {} elements), v̄ ∈ [{}, {}]: max |λ − λ_exact| / |λ_exact|",
+                    cb.branches, cb.elements, cb.from, cb.to
+                ),
+                worst,
+                cb.exact_tolerance,
+            ),
+            Check::at_most(
+                &format!("the same, relative to the smallest gap between exact branches ({min_gap:.3e})"),
+                worst / min_gap,
+                0.5,
+            ),
+        ],
+        "the exact roots are continued in v̄ independently of the tracker; a swapped branch would be off by at least the gap between branches",
+    ));
+    let exact_series: Vec<Series> = exact_branches
+        .iter()
+        .enumerate()
+        .map(|(k, pts)| {
+            Series::markers(
+                if k == 0 { "exact roots" } else { "" },
+                axis.values
+                    .iter()
+                    .zip(pts)
+                    .step_by(4)
+                    .map(|(&v, &w)| (v, w))
+                    .collect::<Vec<_>>(),
+            )
+            .color(6)
+        })
+        .collect();
+    let (_, im_fig) = loci_figures(
+        "string with oscillator",
+        "v̄",
+        &sweep.branches,
+        &chosen,
+        &exact_series,
+    );
+    let omega0 = (o.stiffness / o.mass).sqrt();
+    let im_fig = im_fig.series(
+        Series::line(
+            "oscillator sqrt(c̄/m̄)",
+            vec![(cb.from, omega0), (cb.to, omega0)],
+        )
+        .color(7)
+        .dashed(),
+    );
+    let mut conv = Vec::new();
+    for (basis, label) in [("sine", "1/N"), ("p1", "h"), ("hermite", "h")] {
+        let mut f = Figure::new(format!(
+            "{basis}: coupled frequencies (modes 1–{})",
+            c.modes_checked
+        ))
+        .x_label(label)
+        .y_label("max relative error")
+        .log_log();
+        for (k, &v) in c.speeds.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = levels
+                .iter()
+                .filter(|l| l.basis == basis && l.speed == v)
+                .map(|l| (l.h, l.error))
+                .collect();
+            f = f.series(Series::line_markers(format!("v̄ = {v}"), pts).color(k));
+        }
+        let slope = if basis == "p1" { 2.0 } else { 1.0 };
+        conv.push(f.reference_slope(slope, format!("slope {slope}")));
+    }
+    ctx.plot(report, "campbell", &im_fig)?;
+    ctx.panels(
+        report,
+        "convergence",
+        "String with oscillator: the kink at ā limits the sine basis and Hermite cubics to rate 1; P1 with ā on a node keeps rate 2",
+        &conv,
+        3,
+    )?;
+    #[derive(Serialize)]
+    struct Data<'a> {
+        exact_roots: &'a [(f64, Vec<f64>)],
+        levels: &'a [Level],
+        nodal: &'a [(usize, f64, f64, f64)],
+        campbell_max_error: f64,
+        campbell_min_gap: f64,
+    }
+    ctx.write_data(
+        report,
+        &Data {
+            exact_roots: &exact_roots,
+            levels: &levels,
+            nodal: &nodal_rows,
+            campbell_max_error: worst,
+            campbell_min_gap: min_gap,
+        },
+    )
+}

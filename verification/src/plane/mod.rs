@@ -1,0 +1,78 @@
+//! The quasistatic Kelvin–Voigt plane body (Fernández & Sofonea 2004, §4.2 and beyond;
+//! docs/quasistatic.md): P1 triangles, plane stress or strain, linear or nonlinear A and B, a
+//! damped foundation on Γ3.
+//!
+//! | kind | file | what it establishes |
+//! |---|---|---|
+//! | `plane_convergence` | [`cases::convergence`] | rates in h and k against manufactured solutions (energy O(h), L² O(h²), the paper's E O(h + k), time orders by scheme) |
+//! | `plane_paper_test_2d` | [`cases::paper_test_2d`] | the paper's Test 2D under both readings of Γ1, against its Figs 11–15 |
+//! | `plane_stability` | [`cases::stability`] | the explicit bound k λ_max(A⁻¹B) < 2 |
+//! | `plane_paths` | [`cases::paths`] | the condensed and Newton paths agree; error against cost of both |
+//! | `plane_performance` | [`cases::performance`] | the Test 2D time loop and its cost against the sparse solve |
+
+pub mod cases;
+pub mod errors;
+pub mod scene;
+pub mod study;
+
+use std::path::Path;
+
+use contactlab::scene::Scene;
+
+use crate::core::case::Case;
+use crate::core::context::RunContext;
+use crate::core::format::CaseError;
+use crate::core::report::case_report::CaseReport;
+use crate::family::Family;
+
+/// The plane family.
+pub struct Plane;
+
+impl Family for Plane {
+    fn name(&self) -> &'static str {
+        "plane"
+    }
+
+    fn kinds(&self) -> &'static [&'static str] {
+        &[
+            "plane_convergence",
+            "plane_paper_test_2d",
+            "plane_stability",
+            "plane_paths",
+            "plane_performance",
+        ]
+    }
+
+    fn check(&self, case: &Case) -> Result<(), CaseError> {
+        match case.header.kind.as_str() {
+            "plane_convergence" => cases::convergence::ConvergenceCase::parse(case).map(|_| ()),
+            "plane_paper_test_2d" => cases::paper_test_2d::PaperTestCase::parse(case).map(|_| ()),
+            "plane_stability" => cases::stability::StabilityCase::parse(case).map(|_| ()),
+            "plane_paths" => cases::paths::PathsCase::parse(case).map(|_| ()),
+            "plane_performance" => cases::performance::PerformanceCase::parse(case).map(|_| ()),
+            _ => Err(case.unknown_kind(self.kinds())),
+        }
+    }
+
+    fn run(&self, case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+        match case.header.kind.as_str() {
+            "plane_convergence" => cases::convergence::run(case, ctx, report),
+            "plane_paper_test_2d" => cases::paper_test_2d::run(case, ctx, report),
+            "plane_stability" => cases::stability::run(case, ctx, report),
+            "plane_paths" => cases::paths::run(case, ctx, report),
+            "plane_performance" => cases::performance::run(case, ctx, report),
+            _ => Err(case.unknown_kind(self.kinds()).to_string()),
+        }
+    }
+
+    fn models(&self) -> &'static [&'static str] {
+        &["plane"]
+    }
+
+    fn write_scene(&self, scene: &Scene, source: &str, out: &Path) -> Result<String, String> {
+        match scene {
+            Scene::Plane(s) => scene::write_scene(s, source, out),
+            _ => Err(format!("{source}: not a plane scene")),
+        }
+    }
+}

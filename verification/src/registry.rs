@@ -1,0 +1,92 @@
+//! The list of model families, and what goes through it: loading a case (its header, then its
+//! kind's format, checked by the family that owns the kind), running it, and `verify scene`.
+
+use std::path::Path;
+use std::time::Instant;
+
+use contactlab::scene::Scene;
+
+use crate::core::case::{read_dir, Case};
+use crate::core::context::RunContext;
+use crate::core::format::CaseError;
+use crate::core::report::case_report::CaseReport;
+use crate::family::Family;
+
+/// Every family of the suite.
+pub const FAMILIES: [&dyn Family; 4] = [
+    &crate::rod::Rod,
+    &crate::plane::Plane,
+    &crate::dynamic::Dynamic,
+    &crate::moving::Moving,
+];
+
+/// Every case kind, in family order.
+pub fn kinds() -> Vec<&'static str> {
+    FAMILIES
+        .iter()
+        .flat_map(|f| f.kinds().iter().copied())
+        .collect()
+}
+
+/// The family that owns a case kind.
+pub fn family_of(kind: &str) -> Option<&'static dyn Family> {
+    FAMILIES.iter().copied().find(|f| f.kinds().contains(&kind))
+}
+
+/// Checks a case with its kind's format.
+pub fn check(case: &Case) -> Result<(), CaseError> {
+    match family_of(&case.header.kind) {
+        Some(f) => f.check(case),
+        None => Err(case.unknown_kind(&kinds())),
+    }
+}
+
+/// Reads one case file and checks it.
+pub fn load(path: &Path) -> Result<Case, CaseError> {
+    let case = Case::read(path)?;
+    check(&case)?;
+    Ok(case)
+}
+
+/// Reads and checks every case of a directory (sorted by file name).
+pub fn load_all(dir: &Path) -> Result<Vec<Case>, CaseError> {
+    let cases = read_dir(dir)?;
+    for c in &cases {
+        check(c)?;
+    }
+    Ok(cases)
+}
+
+/// Runs one case and returns its report; a failure to set up or run is recorded in the report
+/// (and fails it), never a panic.
+pub fn run(case: &Case, ctx: &RunContext) -> CaseReport {
+    let start = Instant::now();
+    let mut report = CaseReport::new(&case.header, ctx.metadata.clone());
+    let outcome = match family_of(&case.header.kind) {
+        Some(f) => f.run(case, ctx, &mut report),
+        None => Err(format!(
+            "no family owns the case kind `{}`",
+            case.header.kind
+        )),
+    };
+    if let Err(message) = outcome {
+        report.failure = Some(message);
+    }
+    report.wall_seconds = start.elapsed().as_secs_f64();
+    report.conclude();
+    report
+}
+
+/// `verify scene FILE --out DIR`: the solver crate reads and validates the scene once
+/// (`Scene::load`, which dispatches on its `model`), and the family that writes that model's
+/// results runs it. Returns a summary.
+pub fn run_scene(file: &Path, out: &Path) -> Result<String, String> {
+    let source = file.display().to_string();
+    let scene = Scene::load(file).map_err(|e| format!("{source}: {e}"))?;
+    let model = scene.model();
+    let family = FAMILIES
+        .iter()
+        .find(|f| f.models().contains(&model))
+        .ok_or_else(|| format!("{source}: no family writes the results of model `{model}`"))?;
+    family.write_scene(&scene, &source, out)
+}

@@ -1,0 +1,272 @@
+//! Kind `rod_extremes`: data at the edges. Each run gives correct numbers (checked against the
+//! constant-data exact solution, a one-step closed form, Newton iteration counts) or stops with a
+//! clear error.
+
+use serde::Deserialize;
+
+use contactlab::error::{Error as LabError, SolveError};
+use contactlab::model::quasistatic::scheme::TimeScheme;
+
+use crate::core::case::Case;
+use crate::core::context::RunContext;
+use crate::core::format::{at_least, CaseError};
+use crate::core::gate::{Check, GateVerdict};
+use crate::core::overrides;
+use crate::core::report::case_report::{CaseReport, ExtremeReport};
+use crate::exact::rod_constant_data::RodConstantData;
+use crate::exact::RodExactSolution;
+use crate::rod::errors::RodErrorObserver;
+use crate::rod::study::{Discretization, RodStudy};
+
+/// The case body of `rod_extremes`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtremesCase {
+    /// The rod every run starts from.
+    pub scene: toml::Table,
+    pub extreme: Vec<ExtremeSpec>,
+}
+
+impl ExtremesCase {
+    /// Parses and checks the case body.
+    pub fn parse(case: &Case) -> Result<Self, CaseError> {
+        let c: Self = case.body()?;
+        at_least(case.path(), "extreme", &c.extreme, 1)?;
+        Ok(c)
+    }
+}
+
+/// `[[extreme]]`: one run at the edge of the admissible data.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtremeSpec {
+    pub name: String,
+    /// Dotted scene keys and values overriding the case's scene (`"foundation.p0" = 5.000000001`).
+    #[serde(default)]
+    pub set: toml::Table,
+    pub elements: usize,
+    pub steps: usize,
+    #[serde(default)]
+    pub scheme: TimeScheme,
+    /// `solution` (must run and meet the checks below) or `non_finite_error` (must stop with a
+    /// non-finite error naming the step).
+    pub expect: String,
+    /// Ceiling of the paper error E against the constant-data exact solution.
+    pub paper_e_ceiling: Option<f64>,
+    /// Largest Newton iteration count allowed in one step.
+    pub max_newton_iterations: Option<usize>,
+    /// Compare a single step with its independent closed form to this relative tolerance.
+    pub one_step_tolerance: Option<f64>,
+    /// Also run (2M, 2N) and (4M, 4N): the pairwise rates of the paper error E must lie within
+    /// `refinement_tolerance` of this rate (the data still converge at the theory's order).
+    pub refinement_rate: Option<f64>,
+    pub refinement_tolerance: Option<f64>,
+    #[serde(default)]
+    pub note: String,
+}
+
+/// The first step from u0 = 0 in closed form. With α = a + θ b k the step solves
+/// α (−w'') = f0, w(0) = 0, α w'(L) = −p_ν(w(L)), whose solution
+/// w(x) = (f0 (L x − x²/2) − p x)/α is reproduced exactly at the nodes by P1 (1D nodal
+/// exactness), with w(L) = c/(α + L β_act), c = f0 L²/2 − L p0, β_act = β if c > 0 (law (2.8)).
+pub fn one_step_displacement(
+    exact: &RodConstantData,
+    alpha: f64,
+    beta: f64,
+    p0: f64,
+    k: f64,
+    x: f64,
+) -> f64 {
+    let (l, f0) = (exact.length, exact.load);
+    let c = f0 * l * l / 2.0 - l * p0;
+    let w_l = if c > 0.0 {
+        c / (alpha + l * beta)
+    } else {
+        c / alpha
+    };
+    let p = beta * w_l.max(0.0) + p0;
+    k * (f0 * (l * x - 0.5 * x * x) - p * x) / alpha
+}
+
+fn run_one(case: &ExtremesCase, spec: &ExtremeSpec) -> ExtremeReport {
+    let mut checks = Vec::new();
+    let outcome = (|| -> Result<String, String> {
+        let scene = overrides::applied(&case.scene, &spec.set).map_err(|e| e.to_string())?;
+        let study = RodStudy::new(Some(&scene), None, &Discretization::default())
+            .map_err(|e| e.to_string())?;
+        let solver = study
+            .solver(spec.elements, spec.steps, spec.scheme)
+            .map_err(|e| e.to_string())?;
+        let family = RodConstantData::for_problem(&study.problem).ok();
+        let exact: Option<&dyn RodExactSolution> =
+            family.as_ref().map(|f| f as &dyn RodExactSolution);
+        let (a, b) = (study.problem.viscosity, study.problem.elasticity);
+        let mut u_final = Vec::new();
+        let mut errors = None;
+        let result = match exact {
+            Some(ex) => {
+                let mut obs = RodErrorObserver::new(ex, a, b, spec.steps);
+                let steps = spec.steps;
+                let r = solver.run(
+                    &mut |s: &contactlab::model::quasistatic::rod_solver::RodStep<'_>| {
+                        contactlab::model::quasistatic::rod_solver::RodObserver::observe(
+                            &mut obs, s,
+                        );
+                        if s.n == steps {
+                            u_final = s.u.to_vec();
+                        }
+                    },
+                );
+                errors = Some(obs.errors());
+                r
+            }
+            None => {
+                solver.run(&mut |_: &contactlab::model::quasistatic::rod_solver::RodStep<'_>| {})
+            }
+        };
+        match (spec.expect.as_str(), result) {
+            ("solution", Ok(stats)) => {
+                checks.push(Check::holds("run completes", true, "a solution"));
+                if let (Some(ceiling), Some(errs)) = (spec.paper_e_ceiling, &errors) {
+                    let e = errs.get("paper_E").copied().unwrap_or(f64::NAN);
+                    let mut c = Check::at_most(
+                        "paper E against the constant-data exact solution",
+                        e,
+                        ceiling,
+                    );
+                    c.passed &= e.is_finite();
+                    checks.push(c);
+                }
+                if let (Some(rate), Some(ex)) = (spec.refinement_rate, exact) {
+                    let tol = spec.refinement_tolerance.unwrap_or(0.1);
+                    let mut e = vec![errors
+                        .as_ref()
+                        .and_then(|m| m.get("paper_E").copied())
+                        .unwrap_or(f64::NAN)];
+                    for factor in [2, 4] {
+                        let (m, n) = (spec.elements * factor, spec.steps * factor);
+                        let solver = study.solver(m, n, spec.scheme).map_err(|e| e.to_string())?;
+                        let mut obs = RodErrorObserver::new(ex, a, b, n);
+                        solver.run(&mut obs).map_err(|e| e.to_string())?;
+                        e.push(obs.errors().get("paper_E").copied().unwrap_or(f64::NAN));
+                    }
+                    for i in 0..2 {
+                        let observed = (e[i] / e[i + 1]).log2();
+                        let mut c = Check::within(
+                            &format!("pairwise rate of E, (M, N) × {} → × {}", 1 << i, 2 << i),
+                            observed,
+                            rate,
+                            tol,
+                        );
+                        c.passed &= observed.is_finite();
+                        checks.push(c);
+                    }
+                }
+                if let Some(max_it) = spec.max_newton_iterations {
+                    checks.push(Check::at_most(
+                        "most Newton iterations in one step",
+                        stats.max_newton_iterations as f64,
+                        max_it as f64,
+                    ));
+                }
+                if let (Some(tol), Some(fam)) = (spec.one_step_tolerance, &family) {
+                    let k = study.problem.final_time / spec.steps as f64;
+                    let alpha = a + spec.scheme.theta() * b * k;
+                    let (beta, p0) = match fam.law {
+                        crate::exact::rod_constant_data::ConstantLaw::Lubricated { beta, p0 } => {
+                            (beta, p0)
+                        }
+                        crate::exact::rod_constant_data::ConstantLaw::Linear { beta } => {
+                            (beta, 0.0)
+                        }
+                        crate::exact::rod_constant_data::ConstantLaw::Prescribed { stress } => {
+                            (0.0, stress)
+                        }
+                    };
+                    let mesh = study.mesh(spec.elements).map_err(|e| e.to_string())?;
+                    let scale = u_final
+                        .iter()
+                        .fold(0.0f64, |m, v| m.max(v.abs()))
+                        .max(1e-300);
+                    let dev = mesh
+                        .nodes()
+                        .iter()
+                        .zip(&u_final)
+                        .map(|(&x, &u)| {
+                            (u - one_step_displacement(fam, alpha, beta, p0, k, x)).abs()
+                        })
+                        .fold(0.0f64, f64::max)
+                        / scale;
+                    checks.push(Check::at_most(
+                        "single step against its closed form (max nodal relative deviation)",
+                        dev,
+                        tol,
+                    ));
+                }
+                Ok("solution".into())
+            }
+            ("solution", Err(e)) => {
+                checks.push(Check::holds(
+                    &format!("run completes ({e})"),
+                    false,
+                    "a solution",
+                ));
+                Ok(format!("error: {e}"))
+            }
+            ("non_finite_error", Ok(_)) => {
+                checks.push(Check::holds(
+                    "stops with a non-finite error",
+                    false,
+                    "an error",
+                ));
+                Ok("solution (unexpected)".into())
+            }
+            ("non_finite_error", Err(e)) => {
+                let message = LabError::from(e.clone()).to_string();
+                let ok = matches!(e, SolveError::NonFinite { step, .. } if step > 0);
+                checks.push(Check::holds(
+                    "stops with a non-finite error naming the step and time",
+                    ok,
+                    "SolveError::NonFinite",
+                ));
+                checks.push(Check::holds(
+                    "the message names the stability bound",
+                    message.contains("stability bound"),
+                    "a hint",
+                ));
+                Ok(format!("error: {message}"))
+            }
+            (other, _) => Err(format!("unknown expect = \"{other}\"")),
+        }
+    })();
+    let outcome = match outcome {
+        Ok(o) => o,
+        Err(e) => {
+            checks.push(Check::holds(&format!("setup ({e})"), false, "a valid run"));
+            format!("setup error: {e}")
+        }
+    };
+    ExtremeReport {
+        name: spec.name.clone(),
+        expect: spec.expect.clone(),
+        outcome,
+        checks,
+        note: spec.note.clone(),
+    }
+}
+
+/// Runs every `[[extreme]]` of the case.
+pub fn run(case: &Case, _ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+    let c = ExtremesCase::parse(case).map_err(|e| e.to_string())?;
+    for spec in &c.extreme {
+        let r = run_one(&c, spec);
+        report.gates.push(GateVerdict::from_checks(
+            format!("extreme: {}", r.name),
+            "extreme",
+            r.checks.clone(),
+            &r.note,
+        ));
+        report.extremes.push(r);
+    }
+    Ok(())
+}

@@ -1,0 +1,9 @@
+//! The rod's case kinds, one file each: the case body's format (unknown keys are errors), its
+//! checks, and its runner.
+
+pub mod convergence;
+pub mod extremes;
+pub mod paper_figures;
+pub mod performance;
+pub mod stability;
+pub mod work_precision;

@@ -1,0 +1,154 @@
+//! `verify scene` for rod scenes: runs the scene and writes its solution (and, where the scene
+//! names an exact solution in an `[exact]` table, its errors) as JSON, with two plots.
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use contactlab::model::quasistatic::rod_output::RodRecorder;
+use contactlab::model::quasistatic::rod_solver::{RodObserver, RodStep};
+use contactlab::scene::rod::RodScene;
+
+use crate::plot::{write_svg, Figure, Series};
+use crate::rod::errors::RodErrorObserver;
+use crate::rod::study::{exact_solution, ExactSpec};
+
+/// What `verify scene` writes to `errors.json`.
+#[derive(Debug, Serialize)]
+pub struct SceneErrors {
+    pub exact_solution: String,
+    pub source: String,
+    pub errors: std::collections::BTreeMap<String, f64>,
+}
+
+/// Runs a rod scene and writes `solution.json` (and, with an `[exact]` table, `errors.json`) and
+/// two plots into `out`. Returns a one-paragraph summary.
+pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String, String> {
+    let source = source.to_string();
+    let exact: Option<ExactSpec> = match &scene.exact {
+        Some(t) => Some(
+            t.clone()
+                .try_into()
+                .map_err(|e: toml::de::Error| format!("{source}: [exact]: {e}"))?,
+        ),
+        None => None,
+    };
+    let solver = scene.solver().map_err(|e| format!("{source}: {e}"))?;
+    let exact = match &exact {
+        Some(spec) => {
+            Some(exact_solution(spec, Some(&scene.problem)).map_err(|e| format!("{source}: {e}"))?)
+        }
+        None => None,
+    };
+    if let Some((_, Some(own))) = &exact {
+        // A manufactured solution brings its own data; the scene must then describe the same rod.
+        if (own.length - scene.problem.length).abs() > 1e-12
+            || (own.final_time - scene.problem.final_time).abs() > 1e-12
+        {
+            return Err(format!(
+                "{source}: the exact solution's rod (L = {}, T = {}) differs from the scene's (L = {}, T = {})",
+                own.length, own.final_time, scene.problem.length, scene.problem.final_time
+            ));
+        }
+    }
+    let exact_solution = exact.as_ref().map(|(e, _)| e.as_ref());
+    let mut recorder =
+        RodRecorder::new(solver.mesh(), solver.grid(), solver.scheme(), &scene.output)
+            .map_err(|e| format!("{source}: {e}"))?;
+    let mut errors = exact_solution.map(|ex| {
+        RodErrorObserver::new(
+            ex,
+            scene.problem.viscosity,
+            scene.problem.elasticity,
+            scene.grid.steps(),
+        )
+    });
+    let stats = solver
+        .run(&mut |s: &RodStep<'_>| {
+            recorder.observe(s);
+            if let Some(e) = errors.as_mut() {
+                e.observe(s);
+            }
+        })
+        .map_err(|e| format!("{source}: {e}"))?;
+    let solution = recorder.finish(stats);
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let write = |name: &str, json: String| {
+        std::fs::write(out.join(name), json)
+            .map_err(|e| format!("{}: {e}", out.join(name).display()))
+    };
+    write(
+        "solution.json",
+        serde_json::to_string_pretty(&solution).map_err(|e| e.to_string())?,
+    )?;
+    let mut summary = format!(
+        "{source}: {} scheme, M = {}, N = {}: u_h(L, T) = {:.12e}, {} Newton iterations (max {} per step), {} steps with the damper active",
+        solution.scheme,
+        solution.nodes.len() - 1,
+        solution.times.len() - 1,
+        solution.end_displacement.last().copied().unwrap_or(f64::NAN),
+        solution.stats.newton_iterations,
+        solution.stats.max_newton_iterations,
+        solution.stats.active_contact_steps
+    );
+    if let (Some(obs), Some(ex)) = (&errors, exact_solution) {
+        let errs = SceneErrors {
+            exact_solution: ex.name().to_string(),
+            source: ex.source().to_string(),
+            errors: obs.errors(),
+        };
+        summary.push_str(&format!(
+            "; paper E = {:.6e} against {}",
+            errs.errors.get("paper_E").copied().unwrap_or(f64::NAN),
+            errs.exact_solution
+        ));
+        write(
+            "errors.json",
+            serde_json::to_string_pretty(&errs).map_err(|e| e.to_string())?,
+        )?;
+    }
+    let title = if scene.title.is_empty() {
+        source.clone()
+    } else {
+        scene.title.clone()
+    };
+    let end = Figure::new(format!("{title}: end displacement and velocity"))
+        .x_label("t (s)")
+        .y_label("value")
+        .series(Series::line(
+            "u_h(L, t)",
+            solution
+                .times
+                .iter()
+                .copied()
+                .zip(solution.end_displacement.iter().copied()),
+        ))
+        .series(Series::line(
+            "w_n(L)",
+            solution
+                .times
+                .iter()
+                .copied()
+                .zip(solution.end_velocity.iter().copied()),
+        ))
+        .series(Series::line(
+            "σ_h(L, t)",
+            solution
+                .times
+                .iter()
+                .copied()
+                .zip(solution.contact_stress.iter().copied()),
+        ));
+    write_svg(&end, &out.join("histories.svg")).map_err(|e| e.to_string())?;
+    let mut snaps = Figure::new(format!("{title}: displacement snapshots"))
+        .x_label("x")
+        .y_label("u_h");
+    for s in &solution.snapshots {
+        snaps = snaps.series(Series::line(
+            format!("t = {}", s.t),
+            solution.nodes.iter().copied().zip(s.u.iter().copied()),
+        ));
+    }
+    write_svg(&snaps, &out.join("snapshots.svg")).map_err(|e| e.to_string())?;
+    Ok(summary)
+}
