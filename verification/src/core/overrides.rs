@@ -113,6 +113,30 @@ pub fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(),
     })
 }
 
+/// Removes one dotted key of `table` (a key that is absent is not an error: the result is the
+/// same). Only plain table paths (no `[i]`) name what to remove.
+pub fn remove(table: &mut toml::Table, key: &str) -> Result<(), OverrideError> {
+    let error = |message: &str| OverrideError {
+        key: key.to_string(),
+        message: message.to_string(),
+    };
+    let mut parts: Vec<&str> = key.split('.').collect();
+    let last = parts.pop().ok_or_else(|| error("empty key"))?;
+    let mut t = table;
+    for p in parts {
+        if p.contains('[') {
+            return Err(error("removal takes a plain table path"));
+        }
+        match t.get_mut(p) {
+            Some(toml::Value::Table(inner)) => t = inner,
+            Some(_) => return Err(error(&format!("`{p}` is not a table"))),
+            None => return Ok(()),
+        }
+    }
+    t.remove(last);
+    Ok(())
+}
+
 /// Applies every override of `set` (dotted keys → values) to `table`, in key order.
 pub fn apply(table: &mut toml::Table, overrides: &toml::Table) -> Result<(), OverrideError> {
     for (key, value) in overrides {
@@ -157,6 +181,16 @@ mod tests {
         set(&mut t, "dirichlet[*].support", "free".into()).expect("every");
         assert_eq!(t["dirichlet"][0]["support"].as_str(), Some("free"));
         assert_eq!(t["dirichlet"][1]["support"].as_str(), Some("free"));
+    }
+
+    #[test]
+    fn removal_takes_a_key_out_and_tolerates_an_absent_one() {
+        let mut t = table("[contact]\nstiffness = 1e6\ndepth = 0.1\n");
+        remove(&mut t, "contact.stiffness").expect("removed");
+        remove(&mut t, "contact.friction.depth").expect("absent");
+        assert!(t["contact"].get("stiffness").is_none());
+        assert_eq!(t["contact"]["depth"].as_float(), Some(0.1));
+        assert!(remove(&mut t, "contact.depth.x").is_err());
     }
 
     #[test]

@@ -1,9 +1,21 @@
-//! Colour maps for scalar fields.
+//! Colours: the palette of the series, and the colour map of scalar fields.
 //!
 //! Viridis (van der Walt & Smith, matplotlib; CC0): a perceptually uniform sequential map from
 //! dark purple through teal to yellow, readable in grey scale and by colour-blind readers.
 
 use plotters::style::RGBColor;
+
+/// Okabe–Ito colour-blind-friendly palette of the series, most distinguishable first.
+pub(crate) const PALETTE: [RGBColor; 8] = [
+    RGBColor(0x00, 0x72, 0xB2), // blue
+    RGBColor(0xD5, 0x5E, 0x00), // vermillion
+    RGBColor(0x00, 0x9E, 0x73), // bluish green
+    RGBColor(0xCC, 0x79, 0xA7), // reddish purple
+    RGBColor(0xE6, 0x9F, 0x00), // orange
+    RGBColor(0x56, 0xB4, 0xE9), // sky blue
+    RGBColor(0x00, 0x00, 0x00), // black
+    RGBColor(0xF0, 0xE4, 0x42), // yellow
+];
 
 /// Colour of values that cannot be mapped (NaN, ±inf): a neutral grey.
 pub(crate) const MISSING: RGBColor = RGBColor(0xB4, 0xB4, 0xB4);

@@ -49,7 +49,7 @@ use plots::{
     contact_force_figure, gci_figures, penetration_figure, snapshot_plots, velocity_figures,
     Labelled,
 };
-use runs::{run_job, variant, Job, RunOutput, RunSummary, StepRecord, Treatment};
+use runs::{run_job, Job, RunOutput, RunSummary, SceneSource, StepRecord, Treatment};
 
 /// `[[run]]`: a scheme and a contact treatment on the scene (its resolution, or `steps`).
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -174,16 +174,21 @@ pub struct ImpactCase {
 }
 
 /// The scene file named by a case.
-fn scene_file(case_path: &Path, scene: &str) -> Result<(PathBuf, DynamicSceneFile), String> {
+fn scene_file(case_path: &Path, scene: &str) -> Result<(PathBuf, SceneSource), String> {
     let path = case_path
         .parent()
         .unwrap_or_else(|| Path::new("."))
         .join(scene);
     let text =
         std::fs::read_to_string(&path).map_err(|e| format!("scene {}: {e}", path.display()))?;
-    let file: DynamicSceneFile =
-        toml::from_str(&text).map_err(|e| format!("scene {}: {e}", path.display()))?;
-    Ok((path, file))
+    let table: toml::Table = text
+        .parse()
+        .map_err(|e| format!("scene {}: {e}", path.display()))?;
+    let file: DynamicSceneFile = table
+        .clone()
+        .try_into()
+        .map_err(|e| format!("scene {}: {e}", path.display()))?;
+    Ok((path, SceneSource { table, file }))
 }
 
 /// The ratio of consecutive refinements, if constant.
@@ -223,7 +228,9 @@ impl ImpactCase {
             positive(p, "max_stage_b_loss", b)?;
         }
         at_least(p, "run", &self.runs, 1)?;
-        let (path, file) = scene_file(p, &self.scene).map_err(|e| bad("scene", &self.scene, &e))?;
+        let (path, source) =
+            scene_file(p, &self.scene).map_err(|e| bad("scene", &self.scene, &e))?;
+        let file = &source.file;
         if !file.dirichlet.is_empty() {
             return Err(bad(
                 "scene",
@@ -249,13 +256,14 @@ impl ImpactCase {
                     "a label no other run has",
                 ));
             }
-            let f = variant(&file, &self.job(r, false), &[])
+            let f = source
+                .variant(&self.job(r, false), &[])
                 .map_err(|e| bad(&format!("run[{i}]"), &r.label(), &e))?;
             DynamicScene::from_file(f)
                 .map_err(|e| bad(&format!("run[{i}]"), &r.label(), &e.to_string()))?;
         }
         for (i, g) in self.gci.iter().enumerate() {
-            self.check_gci(p, i, g, &file)?;
+            self.check_gci(p, i, g, &source)?;
         }
         Ok(())
     }
@@ -265,7 +273,7 @@ impl ImpactCase {
         p: &Path,
         i: usize,
         g: &GciStudy,
-        file: &DynamicSceneFile,
+        source: &SceneSource,
     ) -> Result<(), CaseError> {
         let field = format!("gci[{i}]");
         let run = self
@@ -293,7 +301,8 @@ impl ImpactCase {
                 factor: f,
                 ..self.job(run, false)
             };
-            variant(file, &job, &[])
+            source
+                .variant(&job, &[])
                 .map_err(|e| invalid(p, &format!("{field}.refinements"), f, &e))?;
         }
         for (j, gate) in g.gate.iter().enumerate() {
@@ -363,13 +372,13 @@ fn same_run(a: &Job, b: &Job) -> bool {
 pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
     let c: ImpactCase = case.body().map_err(|e| e.to_string())?;
     c.check(&case.path).map_err(|e| e.to_string())?;
-    let (_, file) = scene_file(&case.path, &c.scene)?;
+    let (_, source) = scene_file(&case.path, &c.scene)?;
     let jobs = all_jobs(&c);
     let bar = ctx.progress_bar(jobs.len() as u64, &case.header.id);
     let outputs: Vec<Result<RunOutput, String>> = jobs
         .par_iter()
         .map(|job| {
-            let out = run_job(&file, job, &c.snapshot_times);
+            let out = run_job(&source, job, &c.snapshot_times);
             bar.inc(1);
             out
         })
@@ -389,7 +398,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
     let ctx_data = CaseData {
         id: &case.header.id,
         case: &c,
-        file: &file,
+        file: &source.file,
     };
     ctx_data.run_gates(report, &runs);
     ctx_data.run_outputs(ctx, report, &runs)?;

@@ -15,6 +15,8 @@ use contactlab::model::dynamic::scheme::DynamicScheme;
 use contactlab::model::dynamic::solver::DynamicStats;
 use contactlab::scene::dynamic::{DynamicScene, DynamicSceneFile, SceneBody};
 
+use crate::core::overrides;
+
 /// The normal contact treatment of a run (the scene's stiffness r and depth g are used).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -97,50 +99,81 @@ fn scaled(field: &str, value: usize, factor: f64) -> Result<usize, String> {
     Ok(v.round() as usize)
 }
 
-/// The scene file of a job.
-pub fn variant(
+/// The case's scene: its table (what the jobs override) and the same table parsed (what they
+/// read: the values that are refined).
+#[derive(Debug, Clone)]
+pub struct SceneSource {
+    pub table: toml::Table,
+    pub file: DynamicSceneFile,
+}
+
+impl SceneSource {
+    /// The scene of a job: the scene table with the job's scheme, treatment, refinement and
+    /// snapshot times as dotted-key overrides (the core's mechanism), parsed by the scene format.
+    pub fn variant(&self, job: &Job, snapshot_times: &[f64]) -> Result<DynamicSceneFile, String> {
+        variant(&self.table, &self.file, job, snapshot_times)
+    }
+}
+
+fn variant(
+    table: &toml::Table,
     file: &DynamicSceneFile,
     job: &Job,
     snapshot_times: &[f64],
 ) -> Result<DynamicSceneFile, String> {
-    let mut f = file.clone();
-    f.time.scheme = job.scheme;
-    let b = &mut f.body;
+    let int = |v: usize| toml::Value::Integer(v as i64);
+    let mut set = toml::Table::new();
+    set.insert("time.scheme".into(), job.scheme.name().into());
+    let b = &file.body;
     for (name, slot) in [
-        ("body.rings", &mut b.rings),
-        ("body.radial", &mut b.radial),
-        ("body.around", &mut b.around),
+        ("body.rings", b.rings),
+        ("body.radial", b.radial),
+        ("body.around", b.around),
     ] {
         if let Some(v) = slot {
-            *v = scaled(name, *v, job.factor)?;
+            set.insert(name.into(), int(scaled(name, v, job.factor)?));
         }
     }
-    if let Some(d) = &mut b.divisions {
-        *d = [
-            scaled("body.divisions", d[0], job.factor)?,
-            scaled("body.divisions", d[1], job.factor)?,
-        ];
+    if let Some(d) = b.divisions {
+        set.insert(
+            "body.divisions".into(),
+            toml::Value::Array(vec![
+                int(scaled("body.divisions", d[0], job.factor)?),
+                int(scaled("body.divisions", d[1], job.factor)?),
+            ]),
+        );
     }
-    f.time.steps = scaled("time.steps", job.steps.unwrap_or(f.time.steps), job.factor)?;
-    let c = f
+    let steps = scaled(
+        "time.steps",
+        job.steps.unwrap_or(file.time.steps),
+        job.factor,
+    )?;
+    set.insert("time.steps".into(), int(steps));
+    let c = file
         .contact
-        .as_mut()
+        .as_ref()
         .ok_or("the impact scene needs a [contact] section")?;
-    c.treatment = job.treatment.name().to_string();
-    if job.treatment == Treatment::Signorini {
+    set.insert("contact.treatment".into(), job.treatment.name().into());
+    let signorini = job.treatment == Treatment::Signorini;
+    if signorini {
         // the friction law keeps the layer depth g of (1.13)
-        if let Some(fr) = &mut c.friction {
-            fr.depth = fr.depth.or(c.depth);
+        if let Some(depth) = c.friction.as_ref().and_then(|fr| fr.depth.or(c.depth)) {
+            set.insert("contact.friction.depth".into(), toml::Value::Float(depth));
         }
-        c.stiffness = None;
-        c.depth = None;
     }
-    f.output.times = if job.snapshots {
-        snapshot_times.to_vec()
-    } else {
-        Vec::new()
-    };
-    Ok(f)
+    let times = if job.snapshots { snapshot_times } else { &[] };
+    set.insert(
+        "output.times".into(),
+        toml::Value::Array(times.iter().map(|&t| toml::Value::Float(t)).collect()),
+    );
+    let mut t = overrides::applied(table, &set).map_err(|e| e.to_string())?;
+    if signorini {
+        for key in ["contact.stiffness", "contact.depth"] {
+            overrides::remove(&mut t, key).map_err(|e| e.to_string())?;
+        }
+    }
+    t.try_into()
+        .map_err(|e: toml::de::Error| format!("the scene of {}: {e}", job.treatment.name()))
 }
 
 /// The total mass per direction and the vectors 1_x, 1_y on the free dofs.
@@ -164,12 +197,12 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// Runs a job of the scene `file`.
 pub fn run_job(
-    file: &DynamicSceneFile,
+    source: &SceneSource,
     job: &Job,
     snapshot_times: &[f64],
 ) -> Result<RunOutput, String> {
     let scene =
-        DynamicScene::from_file(variant(file, job, snapshot_times)?).map_err(|e| e.to_string())?;
+        DynamicScene::from_file(source.variant(job, snapshot_times)?).map_err(|e| e.to_string())?;
     let SceneBody::Plane(body) = &scene.body else {
         return Err("the impact case needs a plane body (disk, annulus or rectangle)".into());
     };
