@@ -30,13 +30,13 @@ use crate::core::case::Case;
 use crate::core::context::RunContext;
 use crate::core::format::CaseError;
 use crate::core::report::case_report::{CaseReport, Table};
-use crate::dynamic::cases::bars::common::{
-    check_common, BarSetup, CeilingGate, FamilySpec, Job, RateGate, SweepOutcome, SweepSpec,
-};
+use crate::dynamic::cases::bars::family::{BarSetup, FamilySpec};
+use crate::dynamic::cases::bars::gates::{check_common, CeilingGate, RateGate};
 use crate::dynamic::cases::bars::runs::{
     exact_history, history_panel, plot_convergence, plot_shown_audits, report_runs, run_jobs,
     solve_timed, step_impulse, RunOutput, ShownRun,
 };
+use crate::dynamic::cases::bars::sweep::{Job, SweepOutcome, SweepSpec};
 use crate::exact::signorini_bar::BarWallImpact;
 
 /// The measured quantities (module docs).

@@ -34,13 +34,13 @@ use crate::core::context::RunContext;
 use crate::core::format::CaseError;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::{CaseReport, Table};
-use crate::dynamic::cases::bars::common::{
-    check_common, BarSetup, CeilingGate, FamilySpec, Job, RateGate, SweepOutcome, SweepSpec,
-};
+use crate::dynamic::cases::bars::family::{BarSetup, FamilySpec};
+use crate::dynamic::cases::bars::gates::{check_common, CeilingGate, RateGate};
 use crate::dynamic::cases::bars::runs::{
     exact_history, history_panel, plot_convergence, plot_shown_audits, report_runs, run_jobs,
     solve_timed, step_impulse, RunOutput, ShownRun,
 };
+use crate::dynamic::cases::bars::sweep::{Job, SweepOutcome, SweepSpec};
 use crate::exact::signorini_bar::{PeriodicSignoriniBar, ENERGY};
 use crate::plot::{Figure, Series};
 

@@ -14,10 +14,15 @@ use contactlab::model::dynamic::solver::{DynamicSolution, DynamicSolver, StepVie
 
 use crate::core::context::RunContext;
 use crate::core::report::case_report::CaseReport;
-use crate::dynamic::cases::bars::common::{
-    ceiling_gates, convergence_figures, cost_and_audit_table, errors_table, group_outcomes,
-    rate_gates, worst_summary, CeilingGate, FamilySpec, Job, LevelOutcome, RateGate, SweepOutcome,
-    SweepSpec,
+use crate::dynamic::cases::bars::family::FamilySpec;
+use crate::dynamic::cases::bars::gates::{
+    ceiling_gates, rate_gates, worst_summary, CeilingGate, RateGate,
+};
+use crate::dynamic::cases::bars::report::{
+    convergence_figures, cost_and_audit_table, errors_table,
+};
+use crate::dynamic::cases::bars::sweep::{
+    group_outcomes, Job, LevelOutcome, SweepOutcome, SweepSpec,
 };
 use crate::dynamic::study::{audit_gate, plot_audits, AuditRun};
 use crate::plot::{Figure, Series};
