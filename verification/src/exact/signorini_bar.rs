@@ -18,7 +18,7 @@
 //! | 1 | −φ/2     | −x/2      | (x−1)/2   | (φ−1)/2   |
 //! | 2 | φ/2      | φ/2       | (1−x)/2   | (1−x)/2   |
 //!
-//! (spec §5). Derivation (checked by the tests below): on [0, 1] the end is free (u(0) > 0) and
+//! (docs/dynamic.md §5). Derivation (checked by the tests below): on [0, 1] the end is free (u(0) > 0) and
 //! d'Alembert with the even extension at x = 0 and the odd one at x = 1 gives the first row; at
 //! t = 1 the bar is undeformed with u_t = −1/2 everywhere; on [1, 2] the end is held (odd
 //! extensions at both ends), the contact stress is u_x(0, t) = −1/2 < 0; at t = 2 the bar is
@@ -31,7 +31,7 @@
 //! and in every zone |u_t| + |u_x| = 1/2 with one of them zero, so the energy density
 //! ½ (u_t² + u_x²) is 1/8 everywhere and E(t) = ½ ∫₀¹ (u_t² + u_x²) dx = 1/8 at all times.
 //!
-//! **The free bar hitting a rigid wall** ([`BarWallImpact`], spec §5): a bar (0, L), free at
+//! **The free bar hitting a rigid wall** ([`BarWallImpact`], docs/dynamic.md §5): a bar (0, L), free at
 //! both ends, moving with u_t = −v0 towards a wall at distance g0 ≥ 0 from its left end, wave
 //! speed c = √(E/ρ). Contact starts at t0 = g0/v0; a compression wave σ = −ρ c v0 runs to the
 //! free end, reflects as an unloading wave and reaches the wall at t0 + 2L/c, when the bar is
@@ -53,11 +53,11 @@ pub struct BarState {
     pub u_t: f64,
 }
 
-/// The periodic Signorini bar of spec §5 (module docs).
+/// The periodic Signorini bar of docs/dynamic.md §5 (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct PeriodicSignoriniBar;
 
-/// u = a + b x + c φ in each (row k, zone) of the spec's table: [a, b, c].
+/// u = a + b x + c φ in each (row k, zone) of the table of docs/dynamic.md §5: [a, b, c].
 const AFFINE: [[[f64; 3]; 4]; 3] = [
     // k = 0: (1−x)/2, (1−φ)/2, (1−x)/2, (1−φ)/2
     [
@@ -100,7 +100,7 @@ impl PeriodicSignoriniBar {
         }
     }
 
-    /// u, u_x, u_t at (x, t), x ∈ [0, 1], from the spec's table. On a kink the zone rules of the
+    /// u, u_x, u_t at (x, t), x ∈ [0, 1], from the table of docs/dynamic.md §5. On a kink the zone rules of the
     /// spec decide the side; at x = 0 they give the limit x → 0⁺ (zone Z2), so `state(0, t).u_x`
     /// is the contact stress.
     pub fn state(&self, x: f64, t: f64) -> BarState {
@@ -222,7 +222,7 @@ impl PeriodicSignoriniBar {
     }
 }
 
-/// The free bar hitting a rigid wall (spec §5; module docs).
+/// The free bar hitting a rigid wall (docs/dynamic.md §5; module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BarWallImpact {
     pub length: f64,
@@ -295,7 +295,7 @@ mod tests {
     //! the weak sense (the characteristic-parallelogram rule u(x, t+s) + u(x, t−s) = u(x+s, t) +
     //! u(x−s, t), which every weak solution of u_tt = u_xx satisfies, across kinks too), u_x and
     //! u_t against finite differences, u(1, t) = 0, the Signorini conditions at x = 0, the initial
-    //! data, the energy 1/8 by quadrature at several times, periodicity and the spec's closed
+    //! data, the energy 1/8 by quadrature at several times, periodicity and the closed
     //! forms of u(0, t) and σ(0, t). Then the exact error integration and the wall impact.
     use super::*;
 

@@ -362,7 +362,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
 fn exact_table(file: &BarWallCase) -> Table {
     let e = file.bar.exact();
     Table {
-        title: "the exact impact (spec §5)".into(),
+        title: "the exact impact (docs/dynamic.md §5)".into(),
         header: [
             "c = √(E/ρ)",
             "contact from t0 = g0/v0",
