@@ -3,6 +3,12 @@
 
 use crate::error::InputError;
 
+/// The symmetric orbit of a point with barycentric coordinates (a, b, b): (a, b, b), (b, a, b),
+/// (b, b, a).
+fn orbit(a: f64, b: f64) -> [[f64; 3]; 3] {
+    [[a, b, b], [b, a, b], [b, b, a]]
+}
+
 /// A rule: barycentric points (λ1, λ2, λ3) and weights summing to 1.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TriangleRule {
@@ -18,21 +24,14 @@ impl TriangleRule {
             1 => (vec![[1.0 / 3.0; 3]], vec![1.0]),
             2 => {
                 let (a, b) = (2.0 / 3.0, 1.0 / 6.0);
-                (vec![[a, b, b], [b, a, b], [b, b, a]], vec![1.0 / 3.0; 3])
+                (orbit(a, b).to_vec(), vec![1.0 / 3.0; 3])
             }
             3 | 4 => {
                 // Dunavant degree 4, 6 points (positive weights; used for degree 3 too).
                 let (a1, b1, w1) = (0.108103018168070, 0.445948490915965, 0.223381589678011);
                 let (a2, b2, w2) = (0.816847572980459, 0.091576213509771, 0.109951743655322);
                 (
-                    vec![
-                        [a1, b1, b1],
-                        [b1, a1, b1],
-                        [b1, b1, a1],
-                        [a2, b2, b2],
-                        [b2, a2, b2],
-                        [b2, b2, a2],
-                    ],
+                    [orbit(a1, b1), orbit(a2, b2)].concat(),
                     vec![w1, w1, w1, w2, w2, w2],
                 )
             }
@@ -41,15 +40,7 @@ impl TriangleRule {
                 let (a1, b1, w1) = (0.059715871789770, 0.470142064105115, 0.132394152788506);
                 let (a2, b2, w2) = (0.797426985353087, 0.101286507323456, 0.125939180544827);
                 (
-                    vec![
-                        [c, c, c],
-                        [a1, b1, b1],
-                        [b1, a1, b1],
-                        [b1, b1, a1],
-                        [a2, b2, b2],
-                        [b2, a2, b2],
-                        [b2, b2, a2],
-                    ],
+                    [[[c, c, c]].as_slice(), &orbit(a1, b1), &orbit(a2, b2)].concat(),
                     vec![0.225, w1, w1, w1, w2, w2, w2],
                 )
             }

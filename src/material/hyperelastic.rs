@@ -185,6 +185,55 @@ macro_rules! lame_law {
     };
 }
 
+/// The methods of [`Hyperelastic2d`] that every law with Lamé constants (λ, μ) shares, for a law
+/// called `$name` in descriptions: whether it is small-strain, its description, the check of
+/// (λ, μ), and the P-wave speed sqrt((λ + 2μ)/ρ). Invoked inside the law's `impl`.
+macro_rules! lame_law_methods {
+    ($name:literal, small_strain: $small:literal) => {
+        fn is_small_strain(&self) -> bool {
+            $small
+        }
+
+        fn describe(&self) -> String {
+            format!(
+                concat!($name, ", plane strain (λ = {}, μ = {})"),
+                self.lambda, self.mu
+            )
+        }
+
+        fn validate(&self, field: &str) -> Result<(), InputError> {
+            check_lame(field, self.lambda, self.mu)
+        }
+
+        fn wave_speed(&self, density: f64) -> f64 {
+            ((self.lambda + 2.0 * self.mu) / density).sqrt()
+        }
+    };
+}
+
+/// The methods of [`Hyperelastic1d`] that every bar law with Young's modulus E shares, for a law
+/// called `$name` in descriptions: whether it is small-strain, its description, the check of E,
+/// and the wave speed sqrt(E/ρ). Invoked inside the law's `impl`.
+macro_rules! young_law_methods {
+    ($name:literal, small_strain: $small:literal) => {
+        fn is_small_strain(&self) -> bool {
+            $small
+        }
+
+        fn describe(&self) -> String {
+            format!(concat!($name, " (E = {})"), self.young)
+        }
+
+        fn validate(&self, field: &str) -> Result<(), InputError> {
+            check_young(field, self.young)
+        }
+
+        fn wave_speed(&self, density: f64) -> f64 {
+            (self.young / density).sqrt()
+        }
+    };
+}
+
 // ---------------------------------------------------------------------------------------------
 // Small 2×2 tensor algebra.
 
@@ -293,24 +342,7 @@ impl Hyperelastic2d for LinearElastic {
         0.5 * self.tangent(&Matrix2::identity(), df1)
     }
 
-    fn is_small_strain(&self) -> bool {
-        true
-    }
-
-    fn describe(&self) -> String {
-        format!(
-            "linear elastic, plane strain (λ = {}, μ = {})",
-            self.lambda, self.mu
-        )
-    }
-
-    fn validate(&self, field: &str) -> Result<(), InputError> {
-        check_lame(field, self.lambda, self.mu)
-    }
-
-    fn wave_speed(&self, density: f64) -> f64 {
-        ((self.lambda + 2.0 * self.mu) / density).sqrt()
-    }
+    lame_law_methods!("linear elastic", small_strain: true);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -380,24 +412,7 @@ impl Hyperelastic2d for StVenantKirchhoff {
         0.5 * df1 * self.second_piola(&e_mid) + 0.5 * (f0 + f1) * self.second_piola(&d_e_mid)
     }
 
-    fn is_small_strain(&self) -> bool {
-        false
-    }
-
-    fn describe(&self) -> String {
-        format!(
-            "St Venant-Kirchhoff, plane strain (λ = {}, μ = {})",
-            self.lambda, self.mu
-        )
-    }
-
-    fn validate(&self, field: &str) -> Result<(), InputError> {
-        check_lame(field, self.lambda, self.mu)
-    }
-
-    fn wave_speed(&self, density: f64) -> f64 {
-        ((self.lambda + 2.0 * self.mu) / density).sqrt()
-    }
+    lame_law_methods!("St Venant-Kirchhoff", small_strain: false);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -572,24 +587,7 @@ impl Hyperelastic2d for NeoHooke {
         f.iter().all(|v| v.is_finite()) && det(f) > 0.0
     }
 
-    fn is_small_strain(&self) -> bool {
-        false
-    }
-
-    fn describe(&self) -> String {
-        format!(
-            "neo-Hooke, plane strain (λ = {}, μ = {})",
-            self.lambda, self.mu
-        )
-    }
-
-    fn validate(&self, field: &str) -> Result<(), InputError> {
-        check_lame(field, self.lambda, self.mu)
-    }
-
-    fn wave_speed(&self, density: f64) -> f64 {
-        ((self.lambda + 2.0 * self.mu) / density).sqrt()
-    }
+    lame_law_methods!("neo-Hooke", small_strain: false);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -636,21 +634,7 @@ impl Hyperelastic1d for LinearElastic1d {
         0.5 * self.young
     }
 
-    fn is_small_strain(&self) -> bool {
-        true
-    }
-
-    fn describe(&self) -> String {
-        format!("linear elastic bar (E = {})", self.young)
-    }
-
-    fn validate(&self, field: &str) -> Result<(), InputError> {
-        check_young(field, self.young)
-    }
-
-    fn wave_speed(&self, density: f64) -> f64 {
-        (self.young / density).sqrt()
-    }
+    young_law_methods!("linear elastic bar", small_strain: true);
 }
 
 /// A St Venant–Kirchhoff bar: W = E/8 (F² − 1)², P = E/2 (F² − 1) F.
@@ -692,21 +676,7 @@ impl Hyperelastic1d for StVenantKirchhoff1d {
         0.125 * self.young * (s + 2.0 * f1 * (f0 + f1))
     }
 
-    fn is_small_strain(&self) -> bool {
-        false
-    }
-
-    fn describe(&self) -> String {
-        format!("St Venant-Kirchhoff bar (E = {})", self.young)
-    }
-
-    fn validate(&self, field: &str) -> Result<(), InputError> {
-        check_young(field, self.young)
-    }
-
-    fn wave_speed(&self, density: f64) -> f64 {
-        (self.young / density).sqrt()
-    }
+    young_law_methods!("St Venant-Kirchhoff bar", small_strain: false);
 }
 
 #[cfg(test)]

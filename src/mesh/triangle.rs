@@ -186,13 +186,7 @@ impl TriangleMesh {
                 side: Some(RectangleSide::Left),
             });
         }
-        let mesh = Self {
-            nodes,
-            triangles,
-            boundary,
-        };
-        mesh.check_areas()?;
-        Ok(mesh)
+        Self::checked(nodes, triangles, boundary)
     }
 
     /// A mesh from nodes and triangles: finite coordinates, valid indices, non-degenerate
@@ -238,6 +232,15 @@ impl TriangleMesh {
             .map(|(_, nodes)| BoundaryEdge { nodes, side: None })
             .collect();
         boundary.sort_by_key(|e| e.nodes);
+        Self::checked(nodes, triangles, boundary)
+    }
+
+    /// The mesh of `nodes`, `triangles` and `boundary`, once every triangle has a positive area.
+    fn checked(
+        nodes: Vec<[f64; 2]>,
+        triangles: Vec<[usize; 3]>,
+        boundary: Vec<BoundaryEdge>,
+    ) -> Result<Self, InputError> {
         let mesh = Self {
             nodes,
             triangles,

@@ -17,6 +17,7 @@ use crate::error::{Error, InputError};
 use crate::model::dynamic::solver::DynamicSolution;
 use crate::model::quasistatic::plane_output::PlaneSolution;
 use crate::model::quasistatic::rod_output::RodSolution;
+use crate::scene::common::scene_error;
 use crate::scene::dynamic::{DynamicScene, DynamicSceneFile};
 use crate::scene::moving::{DiscSceneResult, MovingScene, StringSceneResult};
 use crate::scene::plane::{PlaneScene, PlaneSceneFile};
@@ -47,13 +48,6 @@ pub enum Solution {
     Dynamic(DynamicSolution),
     MovingString(StringSceneResult),
     DiscParticle(DiscSceneResult),
-}
-
-fn scene_error(source_name: &str, e: impl std::fmt::Display) -> Error {
-    Error::Scene {
-        source_name: source_name.to_string(),
-        message: e.to_string(),
-    }
 }
 
 impl Scene {

@@ -2,6 +2,7 @@
 
 use crate::contact::normal_law::{FoundationLaw, NormalLaw};
 use crate::error::InputError;
+use crate::scene::common::{missing, reject_keys};
 use crate::scene::field_spec::FieldSpec;
 
 /// The law (2.7) `linear` (β), (2.8) `lubricated` (β, p0) or (2.9) `prescribed` (stress) of the
@@ -18,24 +19,10 @@ pub fn foundation_law(
         if present {
             Ok(())
         } else {
-            Err(InputError::new(
-                key(k),
-                "(missing)",
-                format!("a value for law = \"{law}\""),
-            ))
+            Err(missing(key(k), format!("a value for law = \"{law}\"")))
         }
     };
-    let reject = |k: &str, present: bool| -> Result<(), InputError> {
-        if present {
-            Err(InputError::new(
-                key(k),
-                "(given)",
-                format!("no such key for law = \"{law}\""),
-            ))
-        } else {
-            Ok(())
-        }
-    };
+    let reject = |k: &str, present: bool| reject_keys(prefix, ("law", law), &[(k, present)], &[]);
     let out = match law {
         "linear" => {
             required("beta", beta.is_some())?;

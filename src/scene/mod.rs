@@ -7,8 +7,14 @@
 //! runs it into a [`Solution`]; each model's module holds its format. Unknown keys are errors (a
 //! misspelt key must not silently fall back to a default), and every value is checked with an
 //! error that names its field.
+//!
+//! What several formats share has one home: `common` (reading the TOML, the `model` check, the
+//! errors for missing and misplaced keys), `boundary` (the boundary parts of plane bodies),
+//! `field_spec` and `foundation`.
 
 pub mod any;
+mod boundary;
+mod common;
 pub mod dynamic;
 pub mod field_spec;
 pub mod foundation;

@@ -65,13 +65,13 @@ use crate::error::{Error, InputError};
 use crate::material::nonlinear::{SaturatingViscosity, SofteningElasticity};
 use crate::material::plane_law::{IsotropicLinear, PlaneLaw};
 use crate::mesh::triangle::{Diagonal, Grading, RectangleSide, TriangleMesh};
-use crate::model::quasistatic::plane::{
-    BoundarySelector, ContactIntegration, ContactPart, DirichletPart, PlaneProblem, Support,
-    TractionPart,
-};
+use crate::model::quasistatic::plane::{ContactIntegration, ContactPart, PlaneProblem};
 use crate::model::quasistatic::plane_output::{PlaneOutputRequest, PlaneSolution};
 use crate::model::quasistatic::plane_solver::{PlaneParams, PlaneSolver, SolverPath};
 use crate::model::quasistatic::scheme::TimeScheme;
+use crate::scene::boundary::{dirichlet_parts, selector, traction_parts, vector};
+pub use crate::scene::boundary::{DirichletSection, TractionSection};
+use crate::scene::common::{check_model, missing, parse_toml, reject_keys};
 use crate::scene::field_spec::FieldSpec;
 use crate::time::grid::TimeGrid;
 
@@ -169,30 +169,6 @@ impl Default for VectorSection {
     }
 }
 
-/// `[[dirichlet]]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct DirichletSection {
-    #[serde(default)]
-    pub sides: Vec<RectangleSide>,
-    /// Instead of `sides`: an expression of x, y selecting the boundary edges whose midpoint makes
-    /// it positive (e.g. `"1e-9 - x"` for the edges on x = 0).
-    #[serde(rename = "where")]
-    pub where_: Option<String>,
-    pub support: Support,
-}
-
-/// `[[traction]]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TractionSection {
-    #[serde(default)]
-    pub sides: Vec<RectangleSide>,
-    #[serde(rename = "where")]
-    pub where_: Option<String>,
-    pub value: [FieldSpec; 2],
-}
-
 /// `[contact]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -248,50 +224,12 @@ pub struct PlaneScene {
     pub file: PlaneSceneFile,
 }
 
-/// The boundary part of a section: its sides, or the edges whose midpoint makes `where` positive.
-pub(crate) fn selector(
-    prefix: &str,
-    sides: &[RectangleSide],
-    where_: Option<&String>,
-) -> Result<BoundarySelector, InputError> {
-    match (sides.is_empty(), where_) {
-        (false, None) => Ok(BoundarySelector::Sides(sides.to_vec())),
-        (true, Some(text)) => {
-            let e = crate::field::Expression::parse(&format!("{prefix}.where"), text)?;
-            Ok(BoundarySelector::Predicate(Arc::new(move |p: [f64; 2]| {
-                e.eval(p[0], p[1], 0.0) > 0.0
-            })))
-        }
-        (false, Some(_)) => Err(InputError::new(
-            format!("{prefix}.where"),
-            "(given with sides)",
-            "either sides or where",
-        )),
-        (true, None) => Err(InputError::new(
-            format!("{prefix}.sides"),
-            "(missing)",
-            "sides = [...] or where = \"expression of x, y\"",
-        )),
-    }
-}
-
-pub(crate) fn vector(
-    prefix: &str,
-    v: &[FieldSpec; 2],
-) -> Result<[crate::field::Field; 2], InputError> {
-    Ok([
-        v[0].to_field(&format!("{prefix}[0]"))?,
-        v[1].to_field(&format!("{prefix}[1]"))?,
-    ])
-}
-
 /// The material law of a section.
 pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, InputError> {
     let get = |k: &str, v: Option<f64>| {
         v.ok_or_else(|| {
-            InputError::new(
+            missing(
                 format!("{prefix}.{k}"),
-                "(missing)",
                 format!("a value for law = \"{}\"", m.law),
             )
         })
@@ -323,16 +261,9 @@ pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, 
         ("shear", m.shear),
         ("delta", m.delta),
         ("eps_c", m.eps_c),
-    ];
-    for (k, v) in given {
-        if v.is_some() && !allowed.contains(&k) {
-            return Err(InputError::new(
-                format!("{prefix}.{k}"),
-                "(given)",
-                format!("no such key for law = \"{}\"", m.law),
-            ));
-        }
-    }
+    ]
+    .map(|(k, v)| (k, v.is_some()));
+    reject_keys(prefix, ("law", &m.law), &given, allowed)?;
     let law: Arc<dyn PlaneLaw> = match m.law.as_str() {
         "plane_stress" => Arc::new(IsotropicLinear::plane_stress(
             get("young", m.young)?,
@@ -370,18 +301,12 @@ pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, 
 impl PlaneScene {
     /// Parses and validates a scene from TOML text; `source_name` labels errors.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, Error> {
-        let file: PlaneSceneFile = toml::from_str(text).map_err(|e| Error::Scene {
-            source_name: source_name.to_string(),
-            message: e.to_string(),
-        })?;
-        Self::from_file(file)
+        Self::from_file(parse_toml(text, source_name)?)
     }
 
     /// Validates a parsed scene file.
     pub fn from_file(file: PlaneSceneFile) -> Result<Self, Error> {
-        if file.model != "plane" {
-            return Err(InputError::new("model", &file.model, "\"plane\"").into());
-        }
+        check_model(&file.model, "plane")?;
         let g = &file.geometry;
         let grading = match (g.grading, g.graded_towards) {
             (None, _) => [Grading::UNIFORM; 2],
@@ -426,32 +351,8 @@ impl PlaneScene {
             viscosity: material("viscosity", &file.viscosity)?,
             elasticity: material("elasticity", &file.elasticity)?,
             body_force: vector("body_force.value", &file.body_force.value)?,
-            dirichlet: file
-                .dirichlet
-                .iter()
-                .enumerate()
-                .map(|(i, d)| {
-                    Ok(DirichletPart {
-                        boundary: selector(
-                            &format!("dirichlet[{i}]"),
-                            &d.sides,
-                            d.where_.as_ref(),
-                        )?,
-                        support: d.support,
-                    })
-                })
-                .collect::<Result<_, InputError>>()?,
-            traction: file
-                .traction
-                .iter()
-                .enumerate()
-                .map(|(i, t)| {
-                    Ok(TractionPart {
-                        boundary: selector(&format!("traction[{i}]"), &t.sides, t.where_.as_ref())?,
-                        traction: vector(&format!("traction[{i}].value"), &t.value)?,
-                    })
-                })
-                .collect::<Result<_, InputError>>()?,
+            dirichlet: dirichlet_parts(&file.dirichlet)?,
+            traction: traction_parts(&file.traction)?,
             contact,
             initial_displacement: match &file.initial.displacement {
                 Some(v) => vector("initial.displacement", v)?,

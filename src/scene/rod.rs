@@ -55,6 +55,7 @@ use crate::model::quasistatic::rod::RodProblem;
 use crate::model::quasistatic::rod_output::{RodOutputRequest, RodSolution};
 use crate::model::quasistatic::rod_solver::{RodParams, RodSolver};
 use crate::model::quasistatic::scheme::TimeScheme;
+use crate::scene::common::{check_model, parse_toml};
 use crate::scene::field_spec::FieldSpec;
 use crate::solve::scalar_semismooth::ScalarNewtonParams;
 use crate::time::grid::TimeGrid;
@@ -162,18 +163,12 @@ pub struct RodScene {
 impl RodScene {
     /// Parses and validates a scene from TOML text; `source_name` (a file name) labels errors.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, Error> {
-        let file: RodSceneFile = toml::from_str(text).map_err(|e| Error::Scene {
-            source_name: source_name.to_string(),
-            message: e.to_string(),
-        })?;
-        Self::from_file(file)
+        Self::from_file(parse_toml(text, source_name)?)
     }
 
     /// Validates a parsed scene file.
     pub fn from_file(file: RodSceneFile) -> Result<Self, Error> {
-        if file.model != "rod" {
-            return Err(InputError::new("model", &file.model, "\"rod\"").into());
-        }
+        check_model(&file.model, "rod")?;
         let foundation = foundation_law(&file.foundation)?;
         let problem = RodProblem {
             length: file.rod.length,

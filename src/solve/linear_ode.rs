@@ -15,6 +15,7 @@ use faer::linalg::cholesky::llt;
 use faer::{Conj, Mat, MatRef, Par};
 
 use crate::error::{Error, InputError, SolveError};
+use crate::solve::dense_cholesky::cholesky_factor;
 
 /// Options of the integration.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -105,27 +106,16 @@ pub fn integrate_second_order(
         .into());
     }
     // [B, A] = M⁻¹ [K, C].
-    let mut factor = mass.to_owned();
-    let mut buf = MemBuffer::new(
-        llt::factor::cholesky_in_place_scratch::<f64>(n, Par::Seq, Default::default()).or(
-            llt::solve::solve_in_place_scratch::<f64>(n, 2 * n, Par::Seq),
-        ),
-    );
-    llt::factor::cholesky_in_place(
-        factor.as_mut(),
-        Default::default(),
-        Par::Seq,
-        MemStack::new(&mut buf),
-        Default::default(),
-    )
-    .map_err(|e| {
-        let llt::factor::LltError::NonPositivePivot { index } = e;
-        SolveError::Singular {
-            operator: "mass matrix (integration)".into(),
-            row: index,
-            pivot: f64::NAN,
-        }
+    let factor = cholesky_factor(mass).map_err(|index| SolveError::Singular {
+        operator: "mass matrix (integration)".into(),
+        row: index,
+        pivot: f64::NAN,
     })?;
+    let mut buf = MemBuffer::new(llt::solve::solve_in_place_scratch::<f64>(
+        n,
+        2 * n,
+        Par::Seq,
+    ));
     let mut ba = Mat::<f64>::from_fn(n, 2 * n, |i, j| {
         if j < n {
             stiffness[(i, j)]

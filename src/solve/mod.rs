@@ -8,9 +8,11 @@
 //! - `small_eigenvalues`: eigenvalue-only Householder + Francis QR for small dense matrices and
 //!   rank-one lines (the stability maps' kernel).
 //! - `balance`: the diagonal power-of-2 similarity both eigensolvers apply first.
+//! - `dense_cholesky`: the Cholesky factor of a small dense SPD matrix (a mass matrix).
 //! - `linear_ode`: RK4 for M q̈ + C q̇ + K q = 0 (the time-integration check of verdicts).
 
 pub mod balance;
+pub mod dense_cholesky;
 pub mod linear_ode;
 pub mod quadratic_eigen;
 pub mod scalar_semismooth;

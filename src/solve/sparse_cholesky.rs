@@ -32,6 +32,44 @@ impl std::fmt::Debug for CholeskyWorkspace {
     }
 }
 
+/// Which triangular solve a kernel runs: with L (forward) or with Lᵀ (backward).
+#[derive(Debug, Clone, Copy)]
+enum Sweep {
+    Forward,
+    Backward,
+}
+
+/// The supernodal structure and values of a factor, as the triangular-solve kernels read them.
+struct Supernodes<'a> {
+    begin: &'a [usize],
+    end: &'a [usize],
+    row_ptr: &'a [usize],
+    value_ptr: &'a [usize],
+    rows: &'a [usize],
+    values: &'a [f64],
+}
+
+impl<'a> Supernodes<'a> {
+    /// The number of supernodes.
+    #[inline(always)]
+    fn count(&self) -> usize {
+        self.begin.len()
+    }
+
+    /// Supernode `s`: its first column, its number of columns, the rows of its pattern below the
+    /// diagonal block, and its values (column-major, size + pattern rows per column).
+    #[inline(always)]
+    fn get(&self, s: usize) -> (usize, usize, &'a [usize], &'a [f64]) {
+        let start = self.begin[s];
+        (
+            start,
+            self.end[s] - start,
+            &self.rows[self.row_ptr[s]..self.row_ptr[s + 1]],
+            &self.values[self.value_ptr[s]..self.value_ptr[s + 1]],
+        )
+    }
+}
+
 /// A symbolic analysis and (after [`SparseCholesky::factor`]) a numeric factorization.
 #[derive(Debug)]
 pub struct SparseCholesky {
@@ -246,12 +284,12 @@ impl SparseCholesky {
         for (new, &old) in self.perm.iter().enumerate() {
             y[new] = b[old];
         }
-        self.forward_kernel(y, &mut ws.permuted);
+        self.kernel(Sweep::Forward, y, &mut ws.permuted);
     }
 
     /// x = Pᵀ L⁻ᵀ y (original order); `y` (factor order) is overwritten.
     pub fn backward(&self, y: &mut [f64], x: &mut [f64], ws: &mut CholeskyWorkspace) {
-        self.backward_kernel(y, &mut ws.permuted);
+        self.kernel(Sweep::Backward, y, &mut ws.permuted);
         for (new, &old) in self.perm.iter().enumerate() {
             x[old] = y[new];
         }
@@ -268,58 +306,55 @@ impl SparseCholesky {
         }
     }
 
-    /// x ← L⁻¹ x in factor order, with AVX2/FMA when the processor has them (detected at run time;
-    /// the same kernel, compiled for wider vectors).
-    fn forward_kernel(&self, x: &mut [f64], tmp: &mut [f64]) {
+    /// The supernodes of the factor, for the triangular-solve kernels.
+    #[inline(always)]
+    fn supernodes(&self) -> Supernodes<'_> {
+        let sym = self.symbolic_supernodal();
+        Supernodes {
+            begin: sym.supernode_begin(),
+            end: sym.supernode_end(),
+            row_ptr: sym.col_ptr_for_row_idx(),
+            value_ptr: sym.col_ptr_for_val(),
+            rows: sym.row_idx(),
+            values: &self.values,
+        }
+    }
+
+    /// x ← L⁻¹ x ([`Sweep::Forward`]) or x ← L⁻ᵀ x ([`Sweep::Backward`]) in factor order, with
+    /// AVX2/FMA when the processor has them (detected at run time; the same kernel, compiled for
+    /// wider vectors).
+    fn kernel(&self, sweep: Sweep, x: &mut [f64], tmp: &mut [f64]) {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
         {
             // SAFETY: the features the function is compiled for were detected on this processor.
-            unsafe { self.forward_kernel_avx2(x, tmp) };
+            unsafe { self.kernel_avx2(sweep, x, tmp) };
             return;
         }
-        self.forward_kernel_generic(x, tmp)
-    }
-
-    /// x ← L⁻ᵀ x in factor order (AVX2/FMA when available).
-    fn backward_kernel(&self, x: &mut [f64], tmp: &mut [f64]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-        {
-            // SAFETY: the features the function is compiled for were detected on this processor.
-            unsafe { self.backward_kernel_avx2(x, tmp) };
-            return;
-        }
-        self.backward_kernel_generic(x, tmp)
+        self.kernel_generic(sweep, x, tmp)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn forward_kernel_avx2(&self, x: &mut [f64], tmp: &mut [f64]) {
-        self.forward_kernel_generic(x, tmp)
+    unsafe fn kernel_avx2(&self, sweep: Sweep, x: &mut [f64], tmp: &mut [f64]) {
+        self.kernel_generic(sweep, x, tmp)
     }
 
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma")]
-    unsafe fn backward_kernel_avx2(&self, x: &mut [f64], tmp: &mut [f64]) {
-        self.backward_kernel_generic(x, tmp)
+    /// The solve of `sweep` without a choice of instructions (inlined where it is called).
+    #[inline(always)]
+    fn kernel_generic(&self, sweep: Sweep, x: &mut [f64], tmp: &mut [f64]) {
+        match sweep {
+            Sweep::Forward => self.forward_kernel_generic(x, tmp),
+            Sweep::Backward => self.backward_kernel_generic(x, tmp),
+        }
     }
 
     /// x ← L⁻¹ x in factor order; `tmp` has length ≥ the largest supernode pattern.
     #[inline(always)]
     fn forward_kernel_generic(&self, x: &mut [f64], tmp: &mut [f64]) {
-        let sym = self.symbolic_supernodal();
-        let (begin, end) = (sym.supernode_begin(), sym.supernode_end());
-        let (rptr, vptr, rows) = (
-            sym.col_ptr_for_row_idx(),
-            sym.col_ptr_for_val(),
-            sym.row_idx(),
-        );
-        for s in 0..sym.n_supernodes() {
-            let start = begin[s];
-            let size = end[s] - start;
-            let pat = &rows[rptr[s]..rptr[s + 1]];
-            let vals = &self.values[vptr[s]..vptr[s + 1]];
+        let sn = self.supernodes();
+        for s in 0..sn.count() {
+            let (start, size, pat, vals) = sn.get(s);
             let nrows = size + pat.len();
             let acc = &mut tmp[..pat.len()];
             acc.iter_mut().for_each(|v| *v = 0.0);
@@ -347,18 +382,9 @@ impl SparseCholesky {
     /// x ← L⁻ᵀ x in factor order.
     #[inline(always)]
     fn backward_kernel_generic(&self, x: &mut [f64], tmp: &mut [f64]) {
-        let sym = self.symbolic_supernodal();
-        let (begin, end) = (sym.supernode_begin(), sym.supernode_end());
-        let (rptr, vptr, rows) = (
-            sym.col_ptr_for_row_idx(),
-            sym.col_ptr_for_val(),
-            sym.row_idx(),
-        );
-        for s in (0..sym.n_supernodes()).rev() {
-            let start = begin[s];
-            let size = end[s] - start;
-            let pat = &rows[rptr[s]..rptr[s + 1]];
-            let vals = &self.values[vptr[s]..vptr[s + 1]];
+        let sn = self.supernodes();
+        for s in (0..sn.count()).rev() {
+            let (start, size, pat, vals) = sn.get(s);
             let nrows = size + pat.len();
             let gathered = &mut tmp[..pat.len()];
             for (g, &row) in gathered.iter_mut().zip(pat) {

@@ -14,7 +14,7 @@ use crate::fem::sparse::SymmetricPattern;
 use crate::field::Field;
 use crate::material::hyperelastic::Hyperelastic1d;
 use crate::mesh::interval::IntervalMesh;
-use crate::model::dynamic::body::ElasticBody;
+use crate::model::dynamic::body::{stiffness_at_rest, ElasticBody, FreeDofs, Operators};
 
 /// Consistent or lumped (row-sum) mass.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -50,13 +50,9 @@ pub struct BarData {
 #[derive(Debug)]
 pub struct BarBody {
     data: BarData,
-    /// Free-dof index of each node.
-    node_dof: Vec<Option<usize>>,
     element_dofs: Vec<[Option<usize>; 2]>,
-    pattern: SymmetricPattern,
-    mass: Vec<f64>,
-    stiffness: Option<Vec<f64>>,
-    n: usize,
+    /// The free dofs (one per node) and the operators.
+    ops: Operators,
 }
 
 impl BarBody {
@@ -67,17 +63,13 @@ impl BarBody {
         data.law.validate("bar.material")?;
         data.body_force.validate("bar.body_force")?;
         let nodes = data.mesh.nodes().len();
-        let mut node_dof = vec![None; nodes];
-        let mut n = 0;
-        for (i, d) in node_dof.iter_mut().enumerate() {
-            let held = (i == 0 && data.supports.left) || (i + 1 == nodes && data.supports.right);
-            if !held {
-                *d = Some(n);
-                n += 1;
-            }
-        }
+        let dofs =
+            FreeDofs::number((0..nodes).map(|i| {
+                (i == 0 && data.supports.left) || (i + 1 == nodes && data.supports.right)
+            }));
+        let n = dofs.count();
         let element_dofs: Vec<[Option<usize>; 2]> = (0..data.mesh.elements())
-            .map(|e| [node_dof[e], node_dof[e + 1]])
+            .map(|e| [dofs.of(e), dofs.of(e + 1)])
             .collect();
         let pattern = SymmetricPattern::new(n, &element_dofs);
         let mut mass = vec![0.0; pattern.nnz()];
@@ -92,17 +84,16 @@ impl BarBody {
         }
         let mut body = Self {
             data,
-            node_dof,
             element_dofs,
-            pattern,
-            mass,
-            stiffness: None,
-            n,
+            ops: Operators {
+                dofs,
+                pattern,
+                mass,
+                stiffness: None,
+            },
         };
         if body.data.law.is_small_strain() {
-            let mut k = vec![0.0; body.pattern.nnz()];
-            body.add_tangent(&vec![0.0; n], 1.0, &mut k);
-            body.stiffness = Some(k);
+            body.ops.stiffness = Some(stiffness_at_rest(&body));
         }
         Ok(body)
     }
@@ -114,26 +105,17 @@ impl BarBody {
 
     /// The free-dof index of node i (None at a held end).
     pub fn node_dof(&self, i: usize) -> Option<usize> {
-        self.node_dof[i]
+        self.ops.dofs.of(i)
     }
 
     /// Nodal values of a free-dof vector (0 at held ends).
     pub fn nodal(&self, u: &[f64]) -> Vec<f64> {
-        self.node_dof
-            .iter()
-            .map(|d| d.map_or(0.0, |d| u[d]))
-            .collect()
+        self.ops.dofs.nodal(u)
     }
 
     /// A free-dof vector from nodal values.
     pub fn from_nodal(&self, values: &[f64]) -> Vec<f64> {
-        let mut u = vec![0.0; self.n];
-        for (i, d) in self.node_dof.iter().enumerate() {
-            if let Some(d) = d {
-                u[*d] = values[i];
-            }
-        }
-        u
+        self.ops.dofs.from_nodal(values)
     }
 
     #[inline]
@@ -152,24 +134,8 @@ impl BarBody {
 }
 
 impl ElasticBody for BarBody {
-    fn dofs(&self) -> usize {
-        self.n
-    }
-
-    fn pattern(&self) -> &SymmetricPattern {
-        &self.pattern
-    }
-
-    fn mass(&self) -> &[f64] {
-        &self.mass
-    }
-
-    fn is_linear(&self) -> bool {
-        self.stiffness.is_some()
-    }
-
-    fn linear_stiffness(&self) -> Option<&[f64]> {
-        self.stiffness.as_deref()
+    fn operators(&self) -> &Operators {
+        &self.ops
     }
 
     fn stored_energy(&self, u: &[f64]) -> f64 {
@@ -206,7 +172,7 @@ impl ElasticBody for BarBody {
         for e in 0..self.element_dofs.len() {
             let (f, h) = self.deformation(u, e);
             let k = scale * self.data.area * self.data.law.tangent(f) / h;
-            self.pattern.add_element(values, e, &[k, -k, -k, k]);
+            self.ops.pattern.add_element(values, e, &[k, -k, -k, k]);
         }
     }
 
@@ -240,7 +206,7 @@ impl ElasticBody for BarBody {
             let (f0, h) = self.deformation(u0, e);
             let (f1, _) = self.deformation(u1, e);
             let k = scale * self.data.area * self.data.law.discrete_gradient_tangent(f0, f1) / h;
-            self.pattern.add_element(values, e, &[k, -k, -k, k]);
+            self.ops.pattern.add_element(values, e, &[k, -k, -k, k]);
         }
     }
 

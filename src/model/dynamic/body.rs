@@ -13,23 +13,104 @@ use std::fmt::Debug;
 
 use crate::fem::sparse::SymmetricPattern;
 
+/// The free dofs of a body: the index among the free dofs of each nodal value (the value of a
+/// node, or one component of it), `None` where a support holds it at zero.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FreeDofs {
+    index: Vec<Option<usize>>,
+    count: usize,
+}
+
+impl FreeDofs {
+    /// Numbers the nodal values in order, skipping those that `held` marks as held at zero.
+    pub fn number(held: impl IntoIterator<Item = bool>) -> Self {
+        let mut count = 0;
+        let index = held
+            .into_iter()
+            .map(|h| {
+                (!h).then(|| {
+                    count += 1;
+                    count - 1
+                })
+            })
+            .collect();
+        Self { index, count }
+    }
+
+    /// The number of free dofs.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// The free dof of nodal value `i` (`None` where held).
+    pub fn of(&self, i: usize) -> Option<usize> {
+        self.index[i]
+    }
+
+    /// The nodal values of the free-dof vector `u` (0 where held).
+    pub fn nodal(&self, u: &[f64]) -> Vec<f64> {
+        self.index.iter().map(|d| d.map_or(0.0, |d| u[d])).collect()
+    }
+
+    /// The free-dof vector of the nodal `values` (the held ones dropped).
+    pub fn from_nodal(&self, values: &[f64]) -> Vec<f64> {
+        let mut u = vec![0.0; self.count];
+        for (i, d) in self.index.iter().enumerate() {
+            if let Some(d) = d {
+                u[*d] = values[i];
+            }
+        }
+        u
+    }
+}
+
+/// What every body assembles on its free dofs: the sparsity pattern shared by the mass and the
+/// tangent stiffness, the mass values and, for a small-strain law, the constant stiffness.
+#[derive(Debug, Clone)]
+pub struct Operators {
+    pub dofs: FreeDofs,
+    pub pattern: SymmetricPattern,
+    pub mass: Vec<f64>,
+    pub stiffness: Option<Vec<f64>>,
+}
+
+/// K_T(0) of `body` (values on its pattern): the constant stiffness when its law is small-strain.
+pub fn stiffness_at_rest(body: &dyn ElasticBody) -> Vec<f64> {
+    let mut k = vec![0.0; body.pattern().nnz()];
+    body.add_tangent(&vec![0.0; body.dofs()], 1.0, &mut k);
+    k
+}
+
 /// A space-discretized elastic body. Vectors hold the free dofs only (Γ1 dofs are held at zero).
 pub trait ElasticBody: Send + Sync + Debug {
+    /// The free dofs and the operators assembled on them.
+    fn operators(&self) -> &Operators;
+
     /// Number of free dofs.
-    fn dofs(&self) -> usize;
+    fn dofs(&self) -> usize {
+        self.operators().dofs.count()
+    }
 
     /// The sparsity pattern shared by the mass and the tangent stiffness.
-    fn pattern(&self) -> &SymmetricPattern;
+    fn pattern(&self) -> &SymmetricPattern {
+        &self.operators().pattern
+    }
 
     /// The mass matrix (values on [`ElasticBody::pattern`]).
-    fn mass(&self) -> &[f64];
+    fn mass(&self) -> &[f64] {
+        &self.operators().mass
+    }
 
     /// Whether F_int is linear (small-strain law): then the stiffness is constant and a step
     /// operator is factored once.
-    fn is_linear(&self) -> bool;
+    fn is_linear(&self) -> bool {
+        self.operators().stiffness.is_some()
+    }
 
     /// The constant stiffness K (values on the pattern) of a linear body.
-    fn linear_stiffness(&self) -> Option<&[f64]>;
+    fn linear_stiffness(&self) -> Option<&[f64]> {
+        self.operators().stiffness.as_deref()
+    }
 
     /// 𝒲(u) = Σ_e |e| W(F_e); +∞ for an inadmissible state (neo-Hooke with det F ≤ 0).
     fn stored_energy(&self, u: &[f64]) -> f64;

@@ -17,7 +17,7 @@ use crate::field::Field;
 use crate::material::hyperelastic::Hyperelastic2d;
 use crate::mesh::triangle::TriangleMesh;
 use crate::model::dynamic::bar::MassMatrix;
-use crate::model::dynamic::body::ElasticBody;
+use crate::model::dynamic::body::{stiffness_at_rest, ElasticBody, FreeDofs, Operators};
 use crate::model::quasistatic::plane::{DirichletPart, TractionPart};
 
 /// The data of a plane-strain body.
@@ -37,16 +37,12 @@ pub struct PlaneBodyData {
 #[derive(Debug)]
 pub struct PlaneBody {
     data: PlaneBodyData,
-    /// Free-dof index of global dof 2 i + c.
-    dof: Vec<Option<usize>>,
     elements: Vec<P1Triangle>,
     element_dofs: Vec<[Option<usize>; 6]>,
-    pattern: SymmetricPattern,
-    mass: Vec<f64>,
-    stiffness: Option<Vec<f64>>,
+    /// The free dofs (global dof 2 i + c of node i, component c) and the operators.
+    ops: Operators,
     /// Traction edges: (node a, node b, part index).
     traction_edges: Vec<([usize; 2], usize)>,
-    n: usize,
     h_min: f64,
 }
 
@@ -83,14 +79,8 @@ impl PlaneBody {
                 traction_edges.push((edge.nodes, i));
             }
         }
-        let mut dof = vec![None; 2 * nn];
-        let mut n = 0;
-        for d in 0..2 * nn {
-            if !fixed[d] {
-                dof[d] = Some(n);
-                n += 1;
-            }
-        }
+        let dofs = FreeDofs::number(fixed);
+        let n = dofs.count();
         let elements: Vec<P1Triangle> = mesh
             .triangles()
             .iter()
@@ -109,7 +99,7 @@ impl PlaneBody {
         let element_dofs: Vec<[Option<usize>; 6]> = mesh
             .triangles()
             .iter()
-            .map(|t| std::array::from_fn(|p| dof[2 * t[p / 2] + p % 2]))
+            .map(|t| std::array::from_fn(|p| dofs.of(2 * t[p / 2] + p % 2)))
             .collect();
         let pattern = SymmetricPattern::new(n, &element_dofs);
         let mut mass = vec![0.0; pattern.nnz()];
@@ -147,20 +137,19 @@ impl PlaneBody {
             .fold(f64::INFINITY, f64::min);
         let mut body = Self {
             data,
-            dof,
             elements,
             element_dofs,
-            pattern,
-            mass,
-            stiffness: None,
+            ops: Operators {
+                dofs,
+                pattern,
+                mass,
+                stiffness: None,
+            },
             traction_edges,
-            n,
             h_min,
         };
         if body.data.law.is_small_strain() {
-            let mut k = vec![0.0; body.pattern.nnz()];
-            body.add_tangent(&vec![0.0; n], 1.0, &mut k);
-            body.stiffness = Some(k);
+            body.ops.stiffness = Some(stiffness_at_rest(&body));
         }
         Ok(body)
     }
@@ -172,23 +161,17 @@ impl PlaneBody {
 
     /// The free-dof index of global dof 2 i + c (None where Γ1 holds it).
     pub fn dof(&self, node: usize, component: usize) -> Option<usize> {
-        self.dof[2 * node + component]
+        self.ops.dofs.of(2 * node + component)
     }
 
     /// Interleaved nodal values (u_x, u_y per node) of a free-dof vector.
     pub fn nodal(&self, u: &[f64]) -> Vec<f64> {
-        self.dof.iter().map(|d| d.map_or(0.0, |d| u[d])).collect()
+        self.ops.dofs.nodal(u)
     }
 
     /// A free-dof vector from interleaved nodal values.
     pub fn from_nodal(&self, values: &[f64]) -> Vec<f64> {
-        let mut u = vec![0.0; self.n];
-        for (g, d) in self.dof.iter().enumerate() {
-            if let Some(d) = d {
-                u[*d] = values[g];
-            }
-        }
-        u
+        self.ops.dofs.from_nodal(values)
     }
 
     /// The element geometries.
@@ -274,24 +257,8 @@ impl PlaneBody {
 }
 
 impl ElasticBody for PlaneBody {
-    fn dofs(&self) -> usize {
-        self.n
-    }
-
-    fn pattern(&self) -> &SymmetricPattern {
-        &self.pattern
-    }
-
-    fn mass(&self) -> &[f64] {
-        &self.mass
-    }
-
-    fn is_linear(&self) -> bool {
-        self.stiffness.is_some()
-    }
-
-    fn linear_stiffness(&self) -> Option<&[f64]> {
-        self.stiffness.as_deref()
+    fn operators(&self) -> &Operators {
+        &self.ops
     }
 
     fn stored_energy(&self, u: &[f64]) -> f64 {
@@ -323,7 +290,7 @@ impl ElasticBody for PlaneBody {
         for e in 0..self.elements.len() {
             let f = self.deformation_gradient(u, e);
             let k = self.element_matrix(e, scale, false, |df| self.data.law.tangent(&f, df));
-            self.pattern.add_element(values, e, &k);
+            self.ops.pattern.add_element(values, e, &k);
         }
     }
 
@@ -354,7 +321,7 @@ impl ElasticBody for PlaneBody {
             let k = self.element_matrix(e, scale, true, |df| {
                 self.data.law.discrete_gradient_tangent(&f0, &f1, df)
             });
-            self.pattern.add_element(values, e, &k);
+            self.ops.pattern.add_element(values, e, &k);
         }
     }
 
@@ -395,7 +362,7 @@ impl ElasticBody for PlaneBody {
                 let f = [gx.eval(x[0], x[1], t), gy.eval(x[0], x[1], t)];
                 for (node, phi) in [(na, 1.0 - s), (nb, s)] {
                     for c in 0..2 {
-                        if let Some(d) = self.dof[2 * node + c] {
+                        if let Some(d) = self.ops.dofs.of(2 * node + c) {
                             out[d] += w * len * phi * f[c];
                         }
                     }
@@ -431,7 +398,7 @@ impl ElasticBody for PlaneBody {
             "plane-strain body: {} nodes, {} P1 triangles, {} free dofs, {}, ρ = {}, {:?} mass",
             self.data.mesh.nodes().len(),
             self.elements.len(),
-            self.n,
+            self.ops.dofs.count(),
             self.data.law.describe(),
             self.data.density,
             self.data.mass

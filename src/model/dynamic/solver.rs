@@ -17,8 +17,7 @@ use crate::model::dynamic::audit::{AuditRecord, EnergyAudit};
 use crate::model::dynamic::body::ElasticBody;
 use crate::model::dynamic::contact_model::{ContactModel, NormalTreatment};
 use crate::model::dynamic::newton::{
-    solve_stage, NewtonParams, NewtonStats, NewtonWorkspace, NodeForces, NodeLaw, NodeState,
-    StageNode, StepAt,
+    solve_stage, NewtonParams, NewtonWorkspace, NodeForces, NodeLaw, NodeState, StageNode, StepAt,
 };
 use crate::model::dynamic::scheme::DynamicScheme;
 use crate::model::dynamic::step_operator::{CondensedStep, FullStep, StepOperator};
@@ -416,59 +415,48 @@ impl DynamicSolver {
                 Operator::Condensed(c) => c,
                 Operator::Full(f) => f,
             };
+            // stage (a), then, for the limited penetration, stage (b) of the IPM (BDS (1.45)):
+            // nodes that reached the depth g are held at g with the compliance L g; continued
+            // while stage (b) pushes further nodes past g
             let mut iterations = 0;
-            let record_stats = |s: &NewtonStats, stats: &mut DynamicStats, it: &mut usize| {
-                *it += s.iterations;
+            let mut stage_b = false;
+            loop {
+                let s = solve_stage(
+                    op_ref,
+                    &stage_nodes,
+                    &mut state,
+                    &mut d_op,
+                    &mut forces,
+                    &self.params.newton,
+                    &mut ws,
+                    at,
+                )?;
+                iterations += s.iterations;
                 stats.backtracks += s.backtracks;
                 stats.max_newton_residual = stats.max_newton_residual.max(s.residual);
-            };
-            let s = solve_stage(
-                op_ref,
-                &stage_nodes,
-                &mut state,
-                &mut d_op,
-                &mut forces,
-                &self.params.newton,
-                &mut ws,
-                at,
-            )?;
-            record_stats(&s, &mut stats, &mut iterations);
-            // stage (b) of the IPM (BDS (1.45)): nodes that reached the depth g are held at g
-            // with the compliance L g; continued while stage (b) pushes further nodes past g
-            let mut stage_b = false;
-            if let Some(NormalTreatment::LimitedPenetration { stiffness, depth }) = treatment {
-                loop {
-                    let mut added = false;
-                    for (i, sn) in stage_nodes.iter_mut().enumerate() {
-                        if forces[i].p >= depth && !matches!(sn.law, NodeLaw::Constrained { .. }) {
-                            sn.law = NodeLaw::Constrained {
-                                gap: depth,
-                                stiffness,
-                            };
-                            state[i].active = true;
-                            sn.friction = sn.friction.map(|(f, _)| (f, true));
-                            added = true;
-                        }
+                let Some(NormalTreatment::LimitedPenetration { stiffness, depth }) = treatment
+                else {
+                    break;
+                };
+                let mut added = false;
+                for (i, sn) in stage_nodes.iter_mut().enumerate() {
+                    if forces[i].p >= depth && !matches!(sn.law, NodeLaw::Constrained { .. }) {
+                        sn.law = NodeLaw::Constrained {
+                            gap: depth,
+                            stiffness,
+                        };
+                        state[i].active = true;
+                        sn.friction = sn.friction.map(|(f, _)| (f, true));
+                        added = true;
                     }
-                    if !added {
-                        break;
-                    }
-                    stage_b = true;
-                    let s = solve_stage(
-                        op_ref,
-                        &stage_nodes,
-                        &mut state,
-                        &mut d_op,
-                        &mut forces,
-                        &self.params.newton,
-                        &mut ws,
-                        at,
-                    )?;
-                    record_stats(&s, &mut stats, &mut iterations);
                 }
-                if stage_b {
-                    stats.stage_b_steps += 1;
+                if !added {
+                    break;
                 }
+                stage_b = true;
+            }
+            if stage_b {
+                stats.stage_b_steps += 1;
             }
             // the full increment
             match &mut op {

@@ -317,6 +317,8 @@ impl PlaneSolver {
             let k = t - t_prev;
             let tau = self.scheme.data_time(t_prev, t);
             self.load(tau, &mut b_full, &mut work);
+            // the Newton iterations of the step, or None for a step skipped before the first
+            // equilibrium
             let iterations = match self.path {
                 SolverPath::Newton => {
                     if self.newton.is_none() {
@@ -378,7 +380,7 @@ impl PlaneSolver {
                     for (d, wf) in w_full.iter_mut().enumerate() {
                         *wf = self.dofs.solved[d].map(|s| w[s]).unwrap_or(0.0);
                     }
-                    it
+                    Some(it)
                 }
                 _ => {
                     self.subtract_elastic_forces(&u, &mut b_full);
@@ -422,33 +424,18 @@ impl PlaneSolver {
                                 }
                                 *wf = v;
                             }
-                            it
+                            Some(it)
                         }
                         Err(ContactFailure::NoEquilibrium(reason)) => {
                             if self.params.start_at_first_equilibrium && !started {
-                                stats.skipped_steps.push(n);
-                                stats.steps += 1;
-                                w_full.iter_mut().for_each(|v| *v = 0.0);
-                                r.iter_mut().for_each(|v| *v = 0.0);
-                                observer.observe(&PlaneStep {
-                                    n,
-                                    t,
-                                    data_time: tau,
-                                    k,
-                                    u: &u,
-                                    w: Some(&w_full),
-                                    contact_velocity: &r,
-                                    contact_pressure: &pressures,
-                                    newton_iterations: 0,
-                                    skipped: true,
+                                None
+                            } else {
+                                return Err(SolveError::NoEquilibrium {
+                                    step: n,
+                                    time: t,
+                                    reason,
                                 });
-                                continue;
                             }
-                            return Err(SolveError::NoEquilibrium {
-                                step: n,
-                                time: t,
-                                reason,
-                            });
                         }
                         Err(ContactFailure::NotConverged {
                             iterations,
@@ -474,33 +461,42 @@ impl PlaneSolver {
                     }
                 }
             };
-            started = true;
-            let mut finite = true;
-            for (ui, wi) in u.iter_mut().zip(&w_full) {
-                *ui += k * wi;
-                finite &= ui.abs() < f64::INFINITY;
-            }
-            if !finite {
-                let (bound, hint) = (self.scheme == TimeScheme::Explicit, "; the explicit scheme is stable only for k λ_max(A⁻¹B) < 2: use a smaller step or the implicit or midpoint scheme");
-                return Err(SolveError::NonFinite {
-                    step: n,
-                    time: t,
-                    quantity: "displacement u_n".into(),
-                    value: u
-                        .iter()
-                        .copied()
-                        .find(|v| !v.is_finite())
-                        .unwrap_or(f64::NAN),
-                    hint: if bound {
-                        hint.to_string()
-                    } else {
-                        String::new()
-                    },
-                });
+            match iterations {
+                None => {
+                    stats.skipped_steps.push(n);
+                    w_full.iter_mut().for_each(|v| *v = 0.0);
+                    r.iter_mut().for_each(|v| *v = 0.0);
+                }
+                Some(iterations) => {
+                    started = true;
+                    let mut finite = true;
+                    for (ui, wi) in u.iter_mut().zip(&w_full) {
+                        *ui += k * wi;
+                        finite &= ui.abs() < f64::INFINITY;
+                    }
+                    if !finite {
+                        let (bound, hint) = (self.scheme == TimeScheme::Explicit, "; the explicit scheme is stable only for k λ_max(A⁻¹B) < 2: use a smaller step or the implicit or midpoint scheme");
+                        return Err(SolveError::NonFinite {
+                            step: n,
+                            time: t,
+                            quantity: "displacement u_n".into(),
+                            value: u
+                                .iter()
+                                .copied()
+                                .find(|v| !v.is_finite())
+                                .unwrap_or(f64::NAN),
+                            hint: if bound {
+                                hint.to_string()
+                            } else {
+                                String::new()
+                            },
+                        });
+                    }
+                    stats.newton_iterations += iterations;
+                    stats.max_newton_iterations = stats.max_newton_iterations.max(iterations);
+                }
             }
             stats.steps += 1;
-            stats.newton_iterations += iterations;
-            stats.max_newton_iterations = stats.max_newton_iterations.max(iterations);
             observer.observe(&PlaneStep {
                 n,
                 t,
@@ -510,8 +506,8 @@ impl PlaneSolver {
                 w: Some(&w_full),
                 contact_velocity: &r,
                 contact_pressure: &pressures,
-                newton_iterations: iterations,
-                skipped: false,
+                newton_iterations: iterations.unwrap_or(0),
+                skipped: iterations.is_none(),
             });
         }
         if let Some(nt) = &self.newton {

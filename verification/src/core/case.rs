@@ -85,8 +85,29 @@ impl Case {
 
     /// The body parsed into a kind's format (which denies unknown keys).
     pub fn body<T: DeserializeOwned>(&self) -> Result<T, CaseError> {
-        self.body
-            .clone()
+        self.parse_table(self.body.clone())
+    }
+
+    /// The body parsed into two formats (each denying unknown keys): the keys named in `keys`
+    /// into `G`, the others into `T`. For a body whose sections the core reads (`G`) and the
+    /// family the rest (`T`).
+    pub fn body_split<G: DeserializeOwned, T: DeserializeOwned>(
+        &self,
+        keys: &[&str],
+    ) -> Result<(G, T), CaseError> {
+        let mut rest = self.body.clone();
+        let mut part = toml::Table::new();
+        for &key in keys {
+            if let Some(v) = rest.remove(key) {
+                part.insert(key.to_string(), v);
+            }
+        }
+        Ok((self.parse_table(part)?, self.parse_table(rest)?))
+    }
+
+    /// `table` parsed into the format `T`; errors name the case file.
+    fn parse_table<T: DeserializeOwned>(&self, table: toml::Table) -> Result<T, CaseError> {
+        table
             .try_into()
             .map_err(|e: toml::de::Error| CaseError::Read {
                 path: self.path.display().to_string(),

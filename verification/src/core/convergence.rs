@@ -2,13 +2,16 @@
 //! confidence intervals, joint error-model gates, pinned reference values, and one log–log plot
 //! per (sweep, parameter) with the expected slopes.
 //!
-//! A family's convergence kind parses its case body (the scene, the exact solution, its options)
-//! and hands the generic part, a [`ConvergenceSpec`], to [`run`] with its study.
+//! A family's convergence kind reads its case body as a [`ConvergenceCase`] (its own keys — the
+//! scene, the exact solution, its options — and the generic part, a [`ConvergenceSpec`]) and
+//! hands the generic part to [`run`] with its study.
 
 use std::path::Path;
 
+use serde::de::DeserializeOwned;
 use serde::Deserialize;
 
+use crate::core::case::Case;
 use crate::core::context::RunContext;
 use crate::core::format::{invalid, CaseError};
 use crate::core::gate::{Check, GateVerdict, ModelCriteria, RateGate};
@@ -95,6 +98,46 @@ pub struct ConvergenceSpec<S: Default> {
     pub gates: Vec<RateGate<SweepSelect<S>>>,
     pub model_gates: Vec<ModelGate<S>>,
     pub references: Vec<ReferenceSpec<S>>,
+}
+
+/// The sections of a convergence case body that the core reads.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields, bound = "S: DeserializeOwned + Default")]
+struct Sections<S: Default> {
+    #[serde(default)]
+    sweep: Vec<SweepSpec<S>>,
+    #[serde(default)]
+    gate: Vec<RateGate<SweepSelect<S>>>,
+    #[serde(default)]
+    model_gate: Vec<ModelGate<S>>,
+    #[serde(default)]
+    reference: Vec<ReferenceSpec<S>>,
+}
+
+/// A convergence case body: the family's keys, read into its format `F` (which denies unknown
+/// keys: the scene, the exact solution, the discretization options), and the core's sections
+/// `[[sweep]]`, `[[gate]]`, `[[model_gate]]` and `[[reference]]`.
+#[derive(Debug, Clone)]
+pub struct ConvergenceCase<F, S: Default> {
+    pub family: F,
+    pub spec: ConvergenceSpec<S>,
+}
+
+impl<F: DeserializeOwned, S: DeserializeOwned + Copy + Default> ConvergenceCase<F, S> {
+    /// Reads the body of `case` and checks the core's sections against the study's error
+    /// names `errors` (the family checks its own keys).
+    pub fn parse(case: &Case, errors: &[&str]) -> Result<Self, CaseError> {
+        let (sections, family): (Sections<S>, F) =
+            case.body_split(&["sweep", "gate", "model_gate", "reference"])?;
+        let spec = ConvergenceSpec {
+            sweeps: sections.sweep,
+            gates: sections.gate,
+            model_gates: sections.model_gate,
+            references: sections.reference,
+        };
+        spec.check(case.path(), errors)?;
+        Ok(Self { family, spec })
+    }
 }
 
 impl<S: Copy + Default> ConvergenceSpec<S> {

@@ -3,7 +3,9 @@
 //! measured against.
 
 use std::collections::BTreeMap;
+use std::fmt::Display;
 use std::path::Path;
+use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
@@ -65,6 +67,48 @@ pub struct Level {
     pub cpu_seconds: f64,
     /// The solver's statistics (the model's own statistics type, as JSON).
     pub stats: serde_json::Value,
+}
+
+/// What one run of a study measured, before it is filed as a [`Level`].
+#[derive(Debug, Clone)]
+pub struct Measured<St> {
+    /// Largest element size.
+    pub h: f64,
+    /// Largest time step.
+    pub k: f64,
+    /// Error functionals by name.
+    pub errors: BTreeMap<String, f64>,
+    /// The study's end value.
+    pub u_end: f64,
+    /// The solver's statistics.
+    pub stats: St,
+}
+
+impl Level {
+    /// Times `run` (a solver run with its error evaluation at M = `elements`, N = `steps` with
+    /// `scheme`) and files what it measured as the level: its wall time as `cpu_seconds`, its
+    /// statistics as JSON (null when they do not serialize).
+    pub fn timed<St: Serialize, E>(
+        elements: usize,
+        steps: usize,
+        scheme: impl Display,
+        run: impl FnOnce() -> Result<Measured<St>, E>,
+    ) -> Result<Self, E> {
+        let start = Instant::now();
+        let m = run()?;
+        let cpu_seconds = start.elapsed().as_secs_f64();
+        Ok(Self {
+            elements,
+            steps,
+            h: m.h,
+            k: m.k,
+            scheme: scheme.to_string(),
+            errors: m.errors,
+            u_end: m.u_end,
+            cpu_seconds,
+            stats: serde_json::to_value(&m.stats).unwrap_or(serde_json::Value::Null),
+        })
+    }
 }
 
 /// `[[sweep]]`: a list of levels (M elements, N steps), each run with each scheme.

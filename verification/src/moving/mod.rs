@@ -14,6 +14,7 @@
 //! | `moving_map` | [`cases::map`] | the 200 × 200 map, deterministic, every point checked against faer, boundaries converged in N |
 
 pub mod cases;
+pub mod convergence;
 pub mod errors;
 pub mod plots;
 pub mod scene;

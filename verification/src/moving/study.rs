@@ -1,5 +1,6 @@
-//! The moving family's study: the eigenvalues of a discretized moving continuum, and the
-//! independent check of a stability verdict.
+//! The moving family's study: the eigenvalues of a discretized moving continuum (the string alone
+//! or with an oscillator in the bushing), sweeps of the tracked branches over the speed, the
+//! flutter onset by bisection, and the independent check of a stability verdict.
 //!
 //! The check integrates M q̈ + C q̇ + K q = 0 in time from a pseudo-random state (`contactlab::solve::linear_ode`, classical RK4) and compare the observed
 //! growth rate of ln ‖(q, q̇)‖ with max Re λ.
@@ -17,11 +18,18 @@
 use serde::{Deserialize, Serialize};
 
 use contactlab::model::moving::c64;
-use contactlab::model::moving::string_data::MovingStringData;
+use contactlab::model::moving::stability::VerdictParams;
+use contactlab::model::moving::stability_map::GridAxis;
+use contactlab::model::moving::string_data::{
+    ContactModel, MovingStringData, OscillatorData, StringParameter,
+};
 use contactlab::model::moving::string_model::{MovingStringModel, StringDiscretization};
+use contactlab::model::moving::sweep::{string_sweep, Sweep};
 use contactlab::model::moving::system::MovingSystem;
 use contactlab::solve::linear_ode::{integrate_second_order, LinearOdeParams, LinearTrajectory};
-use contactlab::solve::quadratic_eigen::QuadraticEigenParams;
+use contactlab::solve::quadratic_eigen::{
+    solve_generalized_quadratic_eigen, QuadraticEigen, QuadraticEigenError, QuadraticEigenParams,
+};
 
 use crate::stats::lcg::Lcg;
 
@@ -55,6 +63,107 @@ pub fn string_eigenvalues(
 ) -> Result<Vec<c64>, String> {
     let model = MovingStringModel::new(disc, Default::default()).map_err(|e| e.to_string())?;
     model_eigenvalues(&model, d)
+}
+
+/// The oscillator in the bushing: spring c̄, mass m̄, at ā on the string.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bushing {
+    pub stiffness: f64,
+    pub mass: f64,
+    pub position: f64,
+}
+
+impl Bushing {
+    /// The string at speed v̄ = `speed` with damping ᾱ = `damping` and this oscillator, held by
+    /// `contact` with the friction product μh̄ = `friction`.
+    pub fn data(
+        &self,
+        speed: f64,
+        damping: f64,
+        contact: ContactModel,
+        friction: f64,
+    ) -> MovingStringData {
+        MovingStringData {
+            speed,
+            damping,
+            oscillator: Some(OscillatorData {
+                stiffness: self.stiffness,
+                mass: self.mass,
+                position: self.position,
+                contact,
+                friction,
+            }),
+        }
+    }
+}
+
+/// The eigenvalues of the singular-mass pencil of `full` (a system that keeps the massless
+/// bushing coordinate) by QZ on its companion form, eigenvalues beyond 1e-10 of the scale
+/// counted infinite.
+pub fn pencil_eigen(full: &MovingSystem) -> Result<QuadraticEigen, QuadraticEigenError> {
+    solve_generalized_quadratic_eigen(
+        full.mass.as_ref(),
+        full.velocity_matrix().as_ref(),
+        full.stiffness_matrix().as_ref(),
+        1e-10,
+    )
+}
+
+/// `points` speeds v̄ equally spaced from `from` to `to`.
+pub fn speed_axis(from: f64, to: f64, points: usize) -> Result<GridAxis, String> {
+    GridAxis::linspace(StringParameter::Speed, from, to, points).map_err(|e| e.to_string())
+}
+
+/// The spectra and tracked eigenvalue branches of `model` along `axis`, starting from the data
+/// `base` (default eigensolver and verdict parameters, every thread).
+pub fn speed_sweep(
+    model: &MovingStringModel,
+    base: &MovingStringData,
+    axis: &GridAxis,
+) -> Result<Sweep, String> {
+    string_sweep(
+        model,
+        base,
+        axis,
+        QuadraticEigenParams::default(),
+        &VerdictParams::default(),
+        0,
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// The flutter onset: the smallest value of the parameter `name` in (0, `hi`] at which the
+/// growth rate `growth` (max Re λ) is positive, by bisection. `hi` is doubled until the system
+/// is unstable there (an error beyond `limit`), then the bracket is halved until its width is at
+/// most `rel_tol` times its upper end; the midpoint of the last bracket. The system must be
+/// stable at 0.
+pub fn flutter_onset(
+    growth: impl Fn(f64) -> Result<f64, String>,
+    name: &str,
+    hi: f64,
+    rel_tol: f64,
+    limit: f64,
+) -> Result<f64, String> {
+    if growth(0.0)? >= 0.0 {
+        return Err(format!("not stable at {name} = 0"));
+    }
+    let (mut lo, mut hi) = (0.0, hi);
+    while growth(hi)? <= 0.0 {
+        lo = hi;
+        hi *= 2.0;
+        if hi > limit {
+            return Err(format!("no flutter onset below {name} = {limit:e}"));
+        }
+    }
+    while hi - lo > rel_tol * hi {
+        let mid = 0.5 * (lo + hi);
+        if growth(mid)? > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
 }
 
 /// One time-integration check.

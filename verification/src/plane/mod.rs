@@ -45,7 +45,7 @@ impl Family for Plane {
 
     fn check(&self, case: &Case) -> Result<(), CaseError> {
         match case.header.kind.as_str() {
-            "plane_convergence" => cases::convergence::ConvergenceCase::parse(case).map(|_| ()),
+            "plane_convergence" => cases::convergence::parse(case).map(|_| ()),
             "plane_paper_test_2d" => cases::paper_test_2d::PaperTestCase::parse(case).map(|_| ()),
             "plane_stability" => cases::stability::StabilityCase::parse(case).map(|_| ()),
             "plane_paths" => cases::paths::PathsCase::parse(case).map(|_| ()),

@@ -4,17 +4,16 @@
 
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex, OnceLock};
-use std::time::Instant;
 
 use serde::Deserialize;
 
-use contactlab::model::quasistatic::plane::ContactIntegration;
+use contactlab::model::quasistatic::plane::{ContactIntegration, PlaneProblem};
 use contactlab::model::quasistatic::plane_solver::{PlaneParams, PlaneSolver, SolverPath};
 use contactlab::model::quasistatic::scheme::TimeScheme;
 use contactlab::time::grid::TimeGrid;
 
 use crate::core::study::Study;
-use crate::core::sweep::Level;
+use crate::core::sweep::{Level, Measured};
 use crate::manufactured::plane::PlaneManufactured;
 use contactlab::fem::norms::l2_difference;
 
@@ -53,6 +52,26 @@ pub struct Discretization {
     pub solver_path: Option<SolverPath>,
     /// Steps of the reference run on the same mesh for the time error `time_l2_final`.
     pub time_reference_steps: Option<usize>,
+}
+
+/// The solver of `problem` with N = `steps` uniform steps, `scheme` and the solver `path`.
+pub fn plane_solver(
+    problem: &PlaneProblem,
+    steps: usize,
+    scheme: TimeScheme,
+    path: SolverPath,
+) -> Result<PlaneSolver, String> {
+    let grid = TimeGrid::uniform(problem.final_time, steps).map_err(|e| e.to_string())?;
+    PlaneSolver::new(
+        problem,
+        grid,
+        scheme,
+        PlaneParams {
+            path,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| e.to_string())
 }
 
 /// The reference u_N of one mesh, computed once.
@@ -106,17 +125,7 @@ impl PlaneStudy {
         scheme: TimeScheme,
     ) -> Result<PlaneSolver, String> {
         let problem = self.exact.problem(divisions, self.integration);
-        let grid = TimeGrid::uniform(problem.final_time, steps).map_err(|e| e.to_string())?;
-        PlaneSolver::new(
-            &problem,
-            grid,
-            scheme,
-            PlaneParams {
-                path: self.path,
-                ..Default::default()
-            },
-        )
-        .map_err(|e| e.to_string())
+        plane_solver(&problem, steps, scheme, self.path)
     }
 
     /// u_N of the reference run on an n × n mesh (computed once per mesh, shared by parallel
@@ -147,43 +156,6 @@ impl PlaneStudy {
         })
         .clone()
     }
-
-    /// Runs (n, N, scheme) and measures the errors (with `time_error`, also the time error
-    /// against the reference run on the same mesh).
-    pub fn run_at(
-        &self,
-        divisions: usize,
-        steps: usize,
-        scheme: TimeScheme,
-        time_error: bool,
-    ) -> Result<Level, String> {
-        let mut solver = self.solver(divisions, steps, scheme)?;
-        let mesh = solver.problem().mesh.clone();
-        let start = Instant::now();
-        let mut obs = PlaneErrorObserver::new(&self.exact, mesh.nodes(), mesh.triangles(), steps);
-        let stats = solver.run(&mut obs).map_err(|e| e.to_string())?;
-        let cpu_seconds = start.elapsed().as_secs_f64();
-        let mut errors = obs.errors();
-        if time_error {
-            let r = self.reference(divisions)?;
-            errors.insert(
-                "time_l2_final".into(),
-                l2_difference(mesh.nodes(), mesh.triangles(), &obs.final_u, &r),
-            );
-        }
-        let u_end = obs.final_u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        Ok(Level {
-            elements: divisions,
-            steps,
-            h: mesh.h_max(),
-            k: solver.grid().k_max(),
-            scheme: scheme.to_string(),
-            errors,
-            u_end,
-            cpu_seconds,
-            stats: serde_json::to_value(&stats).unwrap_or(serde_json::Value::Null),
-        })
-    }
 }
 
 impl Study for PlaneStudy {
@@ -193,13 +165,39 @@ impl Study for PlaneStudy {
         self.scheme
     }
 
+    /// Runs (n × n squares, N steps, scheme) and measures the errors against the manufactured
+    /// solution (with `time_error`, also the time error `time_l2_final` against the reference
+    /// run on the same mesh).
     fn run_level(
         &self,
-        elements: usize,
+        divisions: usize,
         steps: usize,
         scheme: TimeScheme,
         time_error: bool,
     ) -> Result<Level, String> {
-        self.run_at(elements, steps, scheme, time_error)
+        let mut solver = self.solver(divisions, steps, scheme)?;
+        let mesh = solver.problem().mesh.clone();
+        let mut final_u = Vec::new();
+        let mut level = Level::timed(divisions, steps, scheme, || {
+            let mut obs =
+                PlaneErrorObserver::new(&self.exact, mesh.nodes(), mesh.triangles(), steps);
+            let stats = solver.run(&mut obs).map_err(|e| e.to_string())?;
+            final_u = std::mem::take(&mut obs.final_u);
+            Ok::<_, String>(Measured {
+                h: mesh.h_max(),
+                k: solver.grid().k_max(),
+                errors: obs.errors(),
+                u_end: final_u.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+                stats,
+            })
+        })?;
+        if time_error {
+            let r = self.reference(divisions)?;
+            level.errors.insert(
+                "time_l2_final".into(),
+                l2_difference(mesh.nodes(), mesh.triangles(), &final_u, &r),
+            );
+        }
+        Ok(level)
     }
 }

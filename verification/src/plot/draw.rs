@@ -10,7 +10,7 @@ use plotters::element::{Circle, PathElement, Polygon, Rectangle};
 use plotters::prelude::DrawingBackend;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{
-    register_font, FontStyle, IntoFont, RGBAColor, RGBColor, ShapeStyle, TextStyle,
+    register_font, FontStyle, FontTransform, IntoFont, RGBAColor, RGBColor, ShapeStyle, TextStyle,
 };
 
 use super::colormap::PALETTE;
@@ -187,4 +187,103 @@ pub(super) fn draw_marker<DB: DrawingBackend>(
             area.draw(&PathElement::new(vec![(x - R, y + R), (x + R, y - R)], s))
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pieces of a plot frame
+
+/// Draws the major grid lines inside `r`: a vertical line at each pixel x of `xs`, then a
+/// horizontal line at each pixel y of `ys`.
+pub(super) fn draw_major_grid<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    r: &Rect,
+    xs: impl IntoIterator<Item = f64>,
+    ys: impl IntoIterator<Item = f64>,
+) -> DrawResult<DB> {
+    for x in xs {
+        draw_polyline(area, &[(x, r.top), (x, r.bottom)], stroke(GRID_MAJOR, 1))?;
+    }
+    for y in ys {
+        draw_polyline(area, &[(r.left, y), (r.right, y)], stroke(GRID_MAJOR, 1))?;
+    }
+    Ok(())
+}
+
+/// Draws the labelled major ticks of both axes outside `r`: `x_ticks` (pixel x, label) below
+/// its bottom edge, then `y_ticks` (pixel y, label) left of its left edge.
+pub(super) fn draw_major_ticks<'l, DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    r: &Rect,
+    x_ticks: impl IntoIterator<Item = (f64, &'l str)>,
+    y_ticks: impl IntoIterator<Item = (f64, &'l str)>,
+) -> DrawResult<DB> {
+    for (x, label) in x_ticks {
+        draw_polyline(area, &[(x, r.bottom), (x, r.bottom + 6.0)], stroke(TEXT, 1))?;
+        draw_text_anchored(
+            area,
+            label,
+            TICK_SIZE,
+            (HPos::Center, VPos::Top),
+            (x, r.bottom + 9.0),
+        )?;
+    }
+    for (y, label) in y_ticks {
+        draw_polyline(area, &[(r.left - 6.0, y), (r.left, y)], stroke(TEXT, 1))?;
+        draw_text_anchored(
+            area,
+            label,
+            TICK_SIZE,
+            (HPos::Right, VPos::Center),
+            (r.left - 9.0, y),
+        )?;
+    }
+    Ok(())
+}
+
+/// Writes "no data" in grey at the centre of `r`.
+pub(super) fn draw_no_data<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    r: &Rect,
+) -> DrawResult<DB> {
+    let style = text_style(NOTE_SIZE + 4.0)
+        .color(&NOTE)
+        .pos(Pos::new(HPos::Center, VPos::Center));
+    area.draw_text(
+        "no data",
+        &style,
+        ipx(((r.left + r.right) / 2.0, (r.top + r.bottom) / 2.0)),
+    )
+}
+
+/// Writes a non-empty `title` of font `size` centred at the top of an area `width` pixels wide.
+pub(super) fn draw_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    size: f64,
+    width: f64,
+) -> DrawResult<DB> {
+    if title.is_empty() {
+        return Ok(());
+    }
+    draw_text_anchored(
+        area,
+        title,
+        size,
+        (HPos::Center, VPos::Top),
+        (width / 2.0, 10.0),
+    )
+}
+
+/// Writes the y-axis `label` turned 270°, its top at pixel `x`, centred on `r` vertically.
+pub(super) fn draw_y_label<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    label: &str,
+    x: f64,
+    r: &Rect,
+) -> DrawResult<DB> {
+    let style = text_style(LABEL_SIZE)
+        .color(&TEXT)
+        .transform(FontTransform::Rotate270)
+        .pos(Pos::new(HPos::Center, VPos::Top));
+    area.draw_text(label, &style, ipx((x, (r.top + r.bottom) / 2.0)))
 }

@@ -21,7 +21,7 @@
 //! Module map: `figure` describes a plot; `render` draws figures and
 //! `triangles` draws triangle-mesh plots, both with the primitives of `draw` (fonts, colours,
 //! text, shapes) on the axes of `axis` and the clipped geometry of `geom`; `svg` is the one path
-//! that writes either kind, alone or as a grid of panels.
+//! that writes either kind, alone or as a grid of panels (laid out by `grid`).
 
 mod axis;
 mod colormap;
@@ -29,6 +29,7 @@ mod draw;
 mod error;
 mod figure;
 mod geom;
+mod grid;
 mod render;
 mod render_data;
 mod svg;

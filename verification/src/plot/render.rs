@@ -7,21 +7,22 @@
 use std::path::Path;
 
 use plotters::coord::Shift;
-use plotters::drawing::{DrawingArea, IntoDrawingArea};
-use plotters::prelude::{DrawingBackend, SVGBackend};
-use plotters::style::text_anchor::{HPos, Pos, VPos};
-use plotters::style::{FontTransform, RGBAColor, RGBColor};
+use plotters::drawing::DrawingArea;
+use plotters::prelude::DrawingBackend;
+use plotters::style::text_anchor::{HPos, VPos};
+use plotters::style::{RGBAColor, RGBColor};
 
 use super::axis::{auto_range, build_axis, to_axis, user_range, Axis};
 use super::colormap::PALETTE;
 use super::draw::{
-    draw_line, draw_marker, draw_polyline, draw_rect, draw_text_anchored, draw_text_at,
-    ensure_font, fill, stroke, text_size, text_style, DrawResult, GRID_MAJOR, GRID_MINOR, GUIDE,
-    LABEL_SIZE, LEGEND_SIZE, NOTE, NOTE_SIZE, TEXT, TICK_SIZE, TITLE_SIZE,
+    draw_line, draw_major_grid, draw_major_ticks, draw_marker, draw_no_data, draw_polyline,
+    draw_rect, draw_text_anchored, draw_text_at, draw_title, draw_y_label, fill, stroke, text_size,
+    DrawResult, GRID_MINOR, GUIDE, LABEL_SIZE, LEGEND_SIZE, NOTE_SIZE, TEXT, TICK_SIZE, TITLE_SIZE,
 };
 use super::error::PlotError;
 use super::figure::Figure;
-use super::geom::{clip_segment, clipped_polylines, ipx, samples, Px, Rect};
+use super::geom::{clip_segment, clipped_polylines, samples, Px, Rect};
+use super::grid::render_cells;
 use super::render_data::{prepare, reference_lines, Prepared};
 
 /// Pixel coordinates are clamped to this magnitude before clipping.
@@ -35,37 +36,9 @@ pub(super) fn render(
     cell: (u32, u32),
     path: &Path,
 ) -> Result<String, PlotError> {
-    ensure_font()?;
-    let n = figures.len().max(1);
-    let cols = columns.clamp(1, n);
-    let rows = n.div_ceil(cols);
-    let size = (
-        cell.0.saturating_mul(cols as u32),
-        cell.1.saturating_mul(rows as u32),
-    );
-    let mut buf = String::new();
-    {
-        let root = SVGBackend::with_string(&mut buf, size).into_drawing_area();
-        draw_grid(&root, figures, rows, cols).map_err(|e| PlotError::Drawing {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
-    }
-    Ok(buf)
-}
-
-fn draw_grid<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    figures: &[Figure],
-    rows: usize,
-    cols: usize,
-) -> DrawResult<DB> {
-    root.fill(&RGBColor(255, 255, 255))?;
-    let cells = root.split_evenly((rows, cols));
-    for (figure, cell) in figures.iter().zip(cells.iter()) {
-        draw_figure(cell, figure)?;
-    }
-    root.present()
+    render_cells(figures, columns, cell, path, |area, figure| {
+        draw_figure(area, figure)
+    })
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -264,14 +237,12 @@ fn draw_figure<DB: DrawingBackend>(
         let y = frame.px_y(t);
         draw_polyline(area, &[(r.left, y), (r.right, y)], stroke(GRID_MINOR, 1))?;
     }
-    for (t, _) in &frame.x.major {
-        let x = frame.px_x(*t);
-        draw_polyline(area, &[(x, r.top), (x, r.bottom)], stroke(GRID_MAJOR, 1))?;
-    }
-    for (t, _) in &frame.y.major {
-        let y = frame.px_y(*t);
-        draw_polyline(area, &[(r.left, y), (r.right, y)], stroke(GRID_MAJOR, 1))?;
-    }
+    draw_major_grid(
+        area,
+        &r,
+        frame.x.major.iter().map(|(t, _)| frame.px_x(*t)),
+        frame.y.major.iter().map(|(t, _)| frame.px_y(*t)),
+    )?;
 
     // Geometry in pixels. Everything drawn inside the plot is also sampled into `obstacles`,
     // which the labels and then the legend try not to cover.
@@ -415,28 +386,20 @@ fn draw_figure<DB: DrawingBackend>(
         let y = frame.px_y(t);
         draw_polyline(area, &[(r.left - 3.0, y), (r.left, y)], stroke(TEXT, 1))?;
     }
-    for (t, label) in &frame.x.major {
-        let x = frame.px_x(*t);
-        draw_polyline(area, &[(x, r.bottom), (x, r.bottom + 6.0)], stroke(TEXT, 1))?;
-        draw_text_anchored(
-            area,
-            label,
-            TICK_SIZE,
-            (HPos::Center, VPos::Top),
-            (x, r.bottom + 9.0),
-        )?;
-    }
-    for (t, label) in &frame.y.major {
-        let y = frame.px_y(*t);
-        draw_polyline(area, &[(r.left - 6.0, y), (r.left, y)], stroke(TEXT, 1))?;
-        draw_text_anchored(
-            area,
-            label,
-            TICK_SIZE,
-            (HPos::Right, VPos::Center),
-            (r.left - 9.0, y),
-        )?;
-    }
+    draw_major_ticks(
+        area,
+        &r,
+        frame
+            .x
+            .major
+            .iter()
+            .map(|(t, l)| (frame.px_x(*t), l.as_str())),
+        frame
+            .y
+            .major
+            .iter()
+            .map(|(t, l)| (frame.px_y(*t), l.as_str())),
+    )?;
 
     // Annotation labels, on a light halo.
     for l in &labels {
@@ -455,24 +418,11 @@ fn draw_figure<DB: DrawingBackend>(
     if has_data {
         draw_legend(area, &prepared, &r, &obstacles)?;
     } else {
-        let cx = (r.left + r.right) / 2.0;
-        let cy = (r.top + r.bottom) / 2.0;
-        let style = text_style(NOTE_SIZE + 4.0)
-            .color(&NOTE)
-            .pos(Pos::new(HPos::Center, VPos::Center));
-        area.draw_text("no data", &style, ipx((cx, cy)))?;
+        draw_no_data(area, &r)?;
     }
 
     // Title and axis labels.
-    if !figure.title.is_empty() {
-        draw_text_anchored(
-            area,
-            &figure.title,
-            title_size,
-            (HPos::Center, VPos::Top),
-            (w / 2.0, 10.0),
-        )?;
-    }
+    draw_title(area, &figure.title, title_size, w)?;
     if !figure.x_label.is_empty() {
         draw_text_anchored(
             area,
@@ -483,15 +433,7 @@ fn draw_figure<DB: DrawingBackend>(
         )?;
     }
     if !figure.y_label.is_empty() {
-        let style = text_style(LABEL_SIZE)
-            .color(&TEXT)
-            .transform(FontTransform::Rotate270)
-            .pos(Pos::new(HPos::Center, VPos::Top));
-        area.draw_text(
-            &figure.y_label,
-            &style,
-            ipx((10.0, (r.top + r.bottom) / 2.0)),
-        )?;
+        draw_y_label(area, &figure.y_label, 10.0, &r)?;
     }
     Ok(())
 }

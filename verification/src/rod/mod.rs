@@ -43,7 +43,7 @@ impl Family for Rod {
 
     fn check(&self, case: &Case) -> Result<(), CaseError> {
         match case.header.kind.as_str() {
-            "rod_convergence" => cases::convergence::ConvergenceCase::parse(case).map(|_| ()),
+            "rod_convergence" => cases::convergence::parse(case).map(|_| ()),
             "rod_stability" => cases::stability::StabilityCase::parse(case).map(|_| ()),
             "rod_extremes" => cases::extremes::ExtremesCase::parse(case).map(|_| ()),
             "rod_work_precision" => {

@@ -16,7 +16,7 @@ use contactlab::scene::rod::{RodScene, RodSceneFile};
 use contactlab::time::grid::TimeGrid;
 
 use crate::core::study::Study;
-use crate::core::sweep::Level;
+use crate::core::sweep::{Level, Measured};
 use crate::exact::rod_constant_data::RodConstantData;
 use crate::exact::rod_paper::{PaperP0Equals2, PaperP0Equals6};
 use crate::exact::RodExactSolution;
@@ -234,37 +234,33 @@ impl RodStudy {
     ) -> Result<Level, LabError> {
         let solver = self.solver(elements, steps, scheme)?;
         let (a, b) = (self.problem.viscosity, self.problem.elasticity);
-        let start = Instant::now();
-        let mut u_end = 0.0;
         let m = elements;
-        let (errors, stats) = match &self.exact {
-            Some(exact) => {
-                let mut obs = RodErrorObserver::new(exact.as_ref(), a, b, steps);
-                let mut both = |s: &RodStep<'_>| {
-                    obs.observe(s);
-                    u_end = s.u[m];
-                };
-                let stats = solver.run(&mut both)?;
-                (obs.errors(), stats)
-            }
-            None => {
-                let stats = solver.run(&mut |s: &RodStep<'_>| {
-                    u_end = s.u[m];
-                })?;
-                (BTreeMap::new(), stats)
-            }
-        };
-        let cpu_seconds = start.elapsed().as_secs_f64();
-        Ok(Level {
-            elements,
-            steps,
-            h: solver.mesh().h_max(),
-            k: solver.grid().k_max(),
-            scheme: scheme.to_string(),
-            errors,
-            u_end,
-            cpu_seconds,
-            stats: serde_json::to_value(&stats).unwrap_or(serde_json::Value::Null),
+        Level::timed(elements, steps, scheme, || {
+            let mut u_end = 0.0;
+            let (errors, stats) = match &self.exact {
+                Some(exact) => {
+                    let mut obs = RodErrorObserver::new(exact.as_ref(), a, b, steps);
+                    let mut both = |s: &RodStep<'_>| {
+                        obs.observe(s);
+                        u_end = s.u[m];
+                    };
+                    let stats = solver.run(&mut both)?;
+                    (obs.errors(), stats)
+                }
+                None => {
+                    let stats = solver.run(&mut |s: &RodStep<'_>| {
+                        u_end = s.u[m];
+                    })?;
+                    (BTreeMap::new(), stats)
+                }
+            };
+            Ok(Measured {
+                h: solver.mesh().h_max(),
+                k: solver.grid().k_max(),
+                errors,
+                u_end,
+                stats,
+            })
         })
     }
 }

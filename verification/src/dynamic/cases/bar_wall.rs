@@ -23,8 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use contactlab::model::dynamic::bar::BarSupports;
 use contactlab::model::dynamic::body::ElasticBody;
-use contactlab::model::dynamic::contact_model::{BarEnd, ContactModel};
-use contactlab::model::dynamic::solver::{DynamicParams, DynamicProblem, DynamicSolver, StepView};
+use contactlab::model::dynamic::solver::StepView;
 
 use crate::core::case::Case;
 use crate::core::context::RunContext;
@@ -34,7 +33,7 @@ use crate::dynamic::cases::bars::family::{BarSetup, FamilySpec};
 use crate::dynamic::cases::bars::gates::{check_common, CeilingGate, RateGate};
 use crate::dynamic::cases::bars::runs::{
     exact_history, history_panel, plot_convergence, plot_shown_audits, report_runs, run_jobs,
-    solve_timed, step_impulse, RunOutput, ShownRun,
+    solve_timed, step_impulse, RunOutput, ShownRun, WallRun,
 };
 use crate::dynamic::cases::bars::sweep::{Job, SweepOutcome, SweepSpec};
 use crate::exact::signorini_bar::BarWallImpact;
@@ -220,28 +219,23 @@ fn run_level(
     record: bool,
 ) -> Result<RunOutput<History>, String> {
     let exact = bar.exact();
-    let setup = bar.setup();
-    let body = setup.body(elements, family.mass)?;
-    let h = bar.length / elements as f64;
-    let k = final_time / steps as f64;
-    let treatment = family.normal_treatment(h, bar.young);
-    let contact = ContactModel::bar_wall(&body, BarEnd::Left, -bar.gap, treatment)
-        .map_err(|e| e.to_string())?;
-    let sign = contact.nodes[0].sign;
-    let dofs = body.dofs();
-    let body = std::sync::Arc::new(body);
-    let problem = DynamicProblem {
-        body: body.clone(),
-        contact: Some(contact),
-        scheme: family.scheme,
-        final_time,
-        steps,
-        initial_displacement: vec![0.0; dofs],
-        initial_velocity: vec![-bar.speed; dofs],
-    };
-    let solver =
-        DynamicSolver::new(problem, DynamicParams::default()).map_err(|e| e.to_string())?;
-    let midpoint = family.scheme.is_midpoint_type();
+    let WallRun {
+        solver,
+        sign,
+        h,
+        k,
+        midpoint,
+        ..
+    } = WallRun::new(
+        &bar.setup(),
+        family,
+        (elements, steps, final_time),
+        -bar.gap,
+        |body| {
+            let dofs = body.dofs();
+            (vec![0.0; dofs], vec![-bar.speed; dofs])
+        },
+    )?;
     let (t0, tc) = (exact.contact_start(), exact.contact_duration());
     let mass = exact.mass();
     let mut acc = Accumulator::default();

@@ -26,8 +26,7 @@ use serde::{Deserialize, Serialize};
 
 use contactlab::model::dynamic::bar::BarSupports;
 use contactlab::model::dynamic::body::ElasticBody;
-use contactlab::model::dynamic::contact_model::{BarEnd, ContactModel};
-use contactlab::model::dynamic::solver::{DynamicParams, DynamicProblem, DynamicSolver, StepView};
+use contactlab::model::dynamic::solver::StepView;
 
 use crate::core::case::Case;
 use crate::core::context::RunContext;
@@ -38,7 +37,7 @@ use crate::dynamic::cases::bars::family::{BarSetup, FamilySpec};
 use crate::dynamic::cases::bars::gates::{check_common, CeilingGate, RateGate};
 use crate::dynamic::cases::bars::runs::{
     exact_history, history_panel, plot_convergence, plot_shown_audits, report_runs, run_jobs,
-    solve_timed, step_impulse, RunOutput, ShownRun,
+    solve_timed, step_impulse, RunOutput, ShownRun, WallRun,
 };
 use crate::dynamic::cases::bars::sweep::{Job, SweepOutcome, SweepSpec};
 use crate::exact::signorini_bar::{PeriodicSignoriniBar, ENERGY};
@@ -220,32 +219,20 @@ fn run_level(
     record: bool,
 ) -> Result<RunOutput<History>, String> {
     let exact = PeriodicSignoriniBar;
-    let body = BAR.body(elements, family.mass)?;
     let h = BAR.length / elements as f64;
-    let k = final_time / steps as f64;
-    let treatment = family.normal_treatment(h, BAR.young);
-    let contact =
-        ContactModel::bar_wall(&body, BarEnd::Left, 0.0, treatment).map_err(|e| e.to_string())?;
-    // the applied normal force is −s · (generalized force on the normal dof): `NodeForces::normal`
-    // is not it for the tilted HLT force (it holds λ_{n+1/2} without the correction)
-    let sign = contact.nodes[0].sign;
     let nodes: Vec<f64> = (0..=elements).map(|i| i as f64 * h).collect();
-    let u0 = body.from_nodal(&nodes.iter().map(|x| (1.0 - x) / 2.0).collect::<Vec<_>>());
-    let dofs = body.dofs();
+    let WallRun {
+        body,
+        solver,
+        sign,
+        k,
+        midpoint,
+        ..
+    } = WallRun::new(&BAR, family, (elements, steps, final_time), 0.0, |body| {
+        let u0 = body.from_nodal(&nodes.iter().map(|x| (1.0 - x) / 2.0).collect::<Vec<_>>());
+        (u0, vec![0.0; body.dofs()])
+    })?;
     let left = body.node_dof(0).ok_or("the left end must be free")?;
-    let body = std::sync::Arc::new(body);
-    let problem = DynamicProblem {
-        body: body.clone(),
-        contact: Some(contact),
-        scheme: family.scheme,
-        final_time,
-        steps,
-        initial_displacement: u0,
-        initial_velocity: vec![0.0; dofs],
-    };
-    let solver =
-        DynamicSolver::new(problem, DynamicParams::default()).map_err(|e| e.to_string())?;
-    let midpoint = family.scheme.is_midpoint_type();
     let mut acc = Accumulator::default();
     let mut history = record.then(History::default);
     let (mut un, mut vn) = (vec![0.0; elements + 1], vec![0.0; elements + 1]);

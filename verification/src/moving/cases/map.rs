@@ -27,9 +27,7 @@ use contactlab::model::moving::stability::{Verdict, VerdictParams};
 use contactlab::model::moving::stability_map::{
     string_stability_map, GridAxis, StabilityMap, StabilityMapParams,
 };
-use contactlab::model::moving::string_data::{
-    ContactModel, MovingStringData, OscillatorData, StringParameter,
-};
+use contactlab::model::moving::string_data::{ContactModel, MovingStringData, StringParameter};
 use contactlab::model::moving::string_model::{MovingStringModel, StringDiscretization};
 use contactlab::solve::quadratic_eigen::{EigenKernel, QuadraticEigenParams};
 
@@ -38,8 +36,9 @@ use crate::core::format::positive;
 use crate::core::format::CaseError;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
+use crate::moving::errors::max_real_part;
 use crate::moving::plots::{boundary, map_figure};
-use crate::moving::study::check_growth;
+use crate::moving::study::{check_growth, flutter_onset, model_eigenvalues, Bushing};
 use crate::plot::{Figure, Series};
 use crate::stats::lcg::Lcg;
 
@@ -141,18 +140,15 @@ impl MapCase {
     }
 }
 
+/// The string at speed v̄ = `speed` with the model's oscillator in ideal contact, at the control
+/// parameter p = μh̄ c̄ = `control`.
 fn base(m: &MapModel, speed: f64, control: f64) -> MovingStringData {
-    MovingStringData {
-        speed,
-        damping: m.damping,
-        oscillator: Some(OscillatorData {
-            stiffness: m.stiffness,
-            mass: m.mass,
-            position: m.position,
-            contact: ContactModel::Ideal,
-            friction: control / m.stiffness,
-        }),
-    }
+    let bushing = Bushing {
+        stiffness: m.stiffness,
+        mass: m.mass,
+        position: m.position,
+    };
+    bushing.data(speed, m.damping, ContactModel::Ideal, control / m.stiffness)
 }
 
 fn params(kernel: EigenKernel, threads: usize) -> StabilityMapParams {
@@ -188,35 +184,8 @@ fn critical_control(
 ) -> Result<f64, String> {
     let model = MovingStringModel::new(StringDiscretization::Sine { modes }, Default::default())
         .map_err(|e| e.to_string())?;
-    let at = |p: f64| -> Result<f64, String> {
-        let ev = model
-            .system(&base(m, speed, p))
-            .map_err(|e| e.to_string())?
-            .eigen(QuadraticEigenParams::default())
-            .map_err(|e| e.to_string())?
-            .eigenvalues;
-        Ok(ev.iter().map(|l| l.re).fold(f64::NEG_INFINITY, f64::max))
-    };
-    if at(0.0)? >= 0.0 {
-        return Err(format!("v̄ = {speed}: unstable without friction"));
-    }
-    let (mut lo, mut hi) = (0.0, hi);
-    while at(hi)? <= 0.0 {
-        lo = hi;
-        hi *= 2.0;
-        if hi > 1e6 {
-            return Err(format!("v̄ = {speed}: no flutter below p = 1e6"));
-        }
-    }
-    while hi - lo > rel_tol * hi {
-        let mid = 0.5 * (lo + hi);
-        if at(mid)? > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok(0.5 * (lo + hi))
+    let at = |p: f64| model_eigenvalues(&model, &base(m, speed, p)).map(|ev| max_real_part(&ev));
+    flutter_onset(at, "p", hi, rel_tol, 1e6).map_err(|e| format!("v̄ = {speed}: {e}"))
 }
 
 /// Runs the case.

@@ -19,26 +19,21 @@ use serde::{Deserialize, Serialize};
 
 use contactlab::model::moving::c64;
 use contactlab::model::moving::finite_element_basis::ElementKind;
-use contactlab::model::moving::stability::VerdictParams;
-use contactlab::model::moving::stability_map::GridAxis;
-use contactlab::model::moving::string_data::{
-    ContactModel, MovingStringData, OscillatorData, StringParameter,
-};
+use contactlab::model::moving::string_data::{ContactModel, MovingStringData};
 use contactlab::model::moving::string_model::{MovingStringModel, StringDiscretization};
-use contactlab::model::moving::sweep::string_sweep;
-use contactlab::solve::quadratic_eigen::QuadraticEigenParams;
 
 use crate::core::context::RunContext;
 use crate::core::format::CaseError;
-use crate::core::format::{at_least, invalid, positive};
+use crate::core::format::{invalid, positive};
 use crate::core::gate::RateGate;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
 use crate::exact::moving_string::{string_eigenvalue, OscillatorCharacteristic};
+use crate::moving::convergence::{rate_gates, Convergence, Level};
 use crate::moving::errors::frequencies;
 use crate::moving::plots::{loci_figures, upper_branches};
-use crate::moving::study::{string_eigenvalues, SeriesSelect};
-use crate::plot::{Figure, Series};
+use crate::moving::study::{speed_axis, speed_sweep, string_eigenvalues, Bushing, SeriesSelect};
+use crate::plot::Series;
 
 /// The case format of `moving_oscillator`.
 #[derive(Debug, Clone, Deserialize)]
@@ -59,17 +54,6 @@ pub struct Oscillator {
     pub stiffness: f64,
     pub mass: f64,
     pub position: f64,
-}
-
-/// `[convergence]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct Convergence {
-    pub speeds: Vec<f64>,
-    pub modes_checked: usize,
-    pub sine_modes: Vec<usize>,
-    pub p1_elements: Vec<usize>,
-    pub hermite_elements: Vec<usize>,
 }
 
 /// `[nodal]`.
@@ -109,11 +93,7 @@ impl OscillatorCase {
                 "in (0, 1)",
             ));
         }
-        let c = &self.convergence;
-        at_least(p, "convergence.speeds", &c.speeds, 1)?;
-        at_least(p, "convergence.sine_modes", &c.sine_modes, 2)?;
-        at_least(p, "convergence.p1_elements", &c.p1_elements, 2)?;
-        at_least(p, "convergence.hermite_elements", &c.hermite_elements, 2)?;
+        self.convergence.check(p)?;
         for (i, g) in self.gate.iter().enumerate() {
             g.criteria.check(p, &format!("gate[{i}]"))?;
         }
@@ -126,28 +106,29 @@ impl OscillatorCase {
     }
 }
 
-fn data(o: &Oscillator, speed: f64, position: f64) -> MovingStringData {
-    MovingStringData {
-        speed,
-        damping: 0.0,
-        oscillator: Some(OscillatorData {
-            stiffness: o.stiffness,
-            mass: o.mass,
+impl Oscillator {
+    /// The string at speed v̄ = `speed` (undamped) with this oscillator at ā = `position` in
+    /// ideal contact, without friction.
+    fn data(&self, speed: f64, position: f64) -> MovingStringData {
+        let bushing = Bushing {
+            stiffness: self.stiffness,
+            mass: self.mass,
             position,
-            contact: ContactModel::Ideal,
-            friction: 0.0,
-        }),
+        };
+        bushing.data(speed, 0.0, ContactModel::Ideal, 0.0)
     }
-}
 
-#[derive(Debug, Clone, Serialize)]
-struct Level {
-    basis: String,
-    speed: f64,
-    size: usize,
-    h: f64,
-    mode_errors: Vec<f64>,
-    error: f64,
+    /// The exact characteristic equation of the undamped string at speed v̄ = `speed` with this
+    /// oscillator at ā = `position`.
+    fn characteristic(&self, speed: f64, position: f64) -> OscillatorCharacteristic {
+        OscillatorCharacteristic {
+            speed,
+            damping: 0.0,
+            stiffness: self.stiffness,
+            mass: self.mass,
+            position,
+        }
+    }
 }
 
 /// Runs the case.
@@ -161,14 +142,8 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
     let mut exact_roots = Vec::new();
     let mut levels = Vec::new();
     for &v in &c.speeds {
-        let d = data(o, v, o.position);
-        let ch = OscillatorCharacteristic {
-            speed: v,
-            damping: 0.0,
-            stiffness: o.stiffness,
-            mass: o.mass,
-            position: o.position,
-        };
+        let d = o.data(v, o.position);
+        let ch = o.characteristic(v, o.position);
         // Exact roots from the finest P1 approximation (ā on a node).
         let guess = frequencies(&string_eigenvalues(
             fine(c.p1_elements[c.p1_elements.len() - 1]),
@@ -187,84 +162,15 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
                 return Err(format!("two guesses converged to the same root {}", w[0]));
             }
         }
-        let plans: Vec<(&str, usize, f64, StringDiscretization)> = c
-            .sine_modes
-            .iter()
-            .map(|&n| {
-                (
-                    "sine",
-                    n,
-                    1.0 / n as f64,
-                    StringDiscretization::Sine { modes: n },
-                )
-            })
-            .chain(
-                c.p1_elements
-                    .iter()
-                    .map(|&m| ("p1", m, 1.0 / m as f64, fine(m))),
-            )
-            .chain(c.hermite_elements.iter().map(|&m| {
-                (
-                    "hermite",
-                    m,
-                    1.0 / m as f64,
-                    StringDiscretization::FiniteElements {
-                        kind: ElementKind::Hermite,
-                        elements: m,
-                    },
-                )
-            }))
-            .collect();
-        for (basis, size, h, disc) in plans {
-            let f = frequencies(&string_eigenvalues(disc, &d)?);
-            let mode_errors: Vec<f64> = exact
-                .iter()
-                .enumerate()
-                .map(|(k, e)| (f[k] - e).abs() / e)
-                .collect();
-            levels.push(Level {
-                basis: basis.into(),
-                speed: v,
-                size,
-                h,
-                error: mode_errors.iter().copied().fold(0.0, f64::max),
-                mode_errors,
-            });
-        }
+        levels.extend(c.levels(v, &d, &exact, false)?);
         exact_roots.push((v, exact));
     }
-    for g in &case.gate {
-        let (basis, v) = g.select.series.split_once('/').unwrap_or(("", ""));
-        let v: f64 = v.parse().unwrap_or(f64::NAN);
-        let sel: Vec<&Level> = levels
-            .iter()
-            .filter(|l| l.basis == basis && l.speed == v)
-            .collect();
-        if sel.is_empty() {
-            return Err(format!("gate series {} matches no run", g.select.series));
-        }
-        let h: Vec<f64> = sel.iter().map(|l| l.h).collect();
-        let e: Vec<f64> = sel.iter().map(|l| l.error).collect();
-        report.gates.push(g.criteria.evaluate(
-            format!(
-                "{basis}, v̄ = {v}: coupled frequency error vs {}",
-                if basis == "sine" { "1/N" } else { "h" }
-            ),
-            &h,
-            &e,
-        ));
-    }
+    rate_gates(&case.gate, &levels, "coupled frequency error", report)?;
 
     // Nodal modes at ā = 1/2.
     let n = &case.nodal;
-    let dn = data(o, n.speed, 0.5);
-    let chn = OscillatorCharacteristic {
-        speed: n.speed,
-        damping: 0.0,
-        stiffness: o.stiffness,
-        mass: o.mass,
-        position: 0.5,
-    };
+    let dn = o.data(n.speed, 0.5);
+    let chn = o.characteristic(n.speed, 0.5);
     let fnodal = frequencies(&string_eigenvalues(fine(n.elements), &dn)?);
     let mut checks = Vec::new();
     let mut nodal_rows = Vec::new();
@@ -298,17 +204,8 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
     let cb = &case.campbell;
     let model =
         MovingStringModel::new(fine(cb.elements), Default::default()).map_err(|e| e.to_string())?;
-    let axis = GridAxis::linspace(StringParameter::Speed, cb.from, cb.to, cb.points)
-        .map_err(|e| e.to_string())?;
-    let sweep = string_sweep(
-        &model,
-        &data(o, cb.from, o.position),
-        &axis,
-        QuadraticEigenParams::default(),
-        &VerdictParams::default(),
-        0,
-    )
-    .map_err(|e| e.to_string())?;
+    let axis = speed_axis(cb.from, cb.to, cb.points)?;
+    let sweep = speed_sweep(&model, &o.data(cb.from, o.position), &axis)?;
     let chosen = upper_branches(&sweep.branches, cb.branches);
     // The exact branches are continued in v̄ on their own (secant from the linear extrapolation
     // of the previous two roots), independently of the discrete tracking.
@@ -317,13 +214,7 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
     for &b in &chosen {
         let mut roots: Vec<Complex<f64>> = Vec::new();
         for (i, &v) in axis.values.iter().enumerate() {
-            let ch = OscillatorCharacteristic {
-                speed: v,
-                damping: 0.0,
-                stiffness: o.stiffness,
-                mass: o.mass,
-                position: o.position,
-            };
+            let ch = o.characteristic(v, o.position);
             let guess = match roots.len() {
                 0 => Complex::new(0.0, sweep.branches.branches[b][0].im),
                 1 => roots[0],
@@ -398,26 +289,7 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
         .color(7)
         .dashed(),
     );
-    let mut conv = Vec::new();
-    for (basis, label) in [("sine", "1/N"), ("p1", "h"), ("hermite", "h")] {
-        let mut f = Figure::new(format!(
-            "{basis}: coupled frequencies (modes 1–{})",
-            c.modes_checked
-        ))
-        .x_label(label)
-        .y_label("max relative error")
-        .log_log();
-        for (k, &v) in c.speeds.iter().enumerate() {
-            let pts: Vec<(f64, f64)> = levels
-                .iter()
-                .filter(|l| l.basis == basis && l.speed == v)
-                .map(|l| (l.h, l.error))
-                .collect();
-            f = f.series(Series::line_markers(format!("v̄ = {v}"), pts).color(k));
-        }
-        let slope = if basis == "p1" { 2.0 } else { 1.0 };
-        conv.push(f.reference_slope(slope, format!("slope {slope}")));
-    }
+    let conv = c.figures(&levels, "coupled frequencies", [1.0, 2.0, 1.0]);
     ctx.plot(report, "campbell", &im_fig)?;
     ctx.panels(
         report,

@@ -17,25 +17,22 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use contactlab::model::moving::finite_element_basis::ElementKind;
 use contactlab::model::moving::stability::{assess, VerdictParams};
-use contactlab::model::moving::stability_map::GridAxis;
-use contactlab::model::moving::string_data::{MovingStringData, StringParameter};
+use contactlab::model::moving::string_data::MovingStringData;
 use contactlab::model::moving::string_model::{MovingStringModel, StringDiscretization};
-use contactlab::model::moving::sweep::string_sweep;
-use contactlab::solve::quadratic_eigen::QuadraticEigenParams;
 
 use crate::core::context::RunContext;
 use crate::core::format::CaseError;
-use crate::core::format::{at_least, invalid, positive};
+use crate::core::format::{invalid, positive};
 use crate::core::gate::RateGate;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
 use crate::exact::moving_string::{damped_string_eigenvalue, string_eigenvalue};
+use crate::moving::convergence::{rate_gates, Convergence, Level};
 use crate::moving::errors::{frequencies, relative_real_part};
 use crate::moving::plots::{loci_figures, root_locus, upper_branches};
-use crate::moving::study::{string_eigenvalues, SeriesSelect};
-use crate::plot::{Figure, Series};
+use crate::moving::study::{speed_axis, speed_sweep, string_eigenvalues, SeriesSelect};
+use crate::plot::Series;
 
 /// The case format of `moving_string`.
 #[derive(Debug, Clone, Deserialize)]
@@ -47,18 +44,6 @@ pub struct StringCase {
     pub exactness: Exactness,
     pub critical: Critical,
     pub loci: Loci,
-}
-
-/// `[convergence]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct Convergence {
-    pub speeds: Vec<f64>,
-    /// The error is the largest relative error of the first `modes_checked` frequencies.
-    pub modes_checked: usize,
-    pub sine_modes: Vec<usize>,
-    pub p1_elements: Vec<usize>,
-    pub hermite_elements: Vec<usize>,
 }
 
 /// `[exactness]`.
@@ -106,14 +91,7 @@ impl StringCase {
     /// Checks the numbers of the case.
     pub fn check(&self, p: &Path) -> Result<(), CaseError> {
         let c = &self.convergence;
-        at_least(p, "convergence.speeds", &c.speeds, 1)?;
-        for (f, v) in [
-            ("convergence.sine_modes", &c.sine_modes),
-            ("convergence.p1_elements", &c.p1_elements),
-            ("convergence.hermite_elements", &c.hermite_elements),
-        ] {
-            at_least(p, f, v, 2)?;
-        }
+        c.check(p)?;
         if c.modes_checked == 0 {
             return Err(invalid(p, "convergence.modes_checked", 0, ">= 1"));
         }
@@ -166,106 +144,20 @@ impl StringCase {
     }
 }
 
-/// One discretization level.
-#[derive(Debug, Clone, Serialize)]
-struct Level {
-    basis: String,
-    speed: f64,
-    size: usize,
-    h: f64,
-    /// Relative error of each checked mode.
-    mode_errors: Vec<f64>,
-    error: f64,
-    max_relative_real_part: f64,
-}
-
 /// Runs the case.
 pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
     let c = &case.convergence;
     let mut levels = Vec::new();
     for &v in &c.speeds {
-        let data = MovingStringData::string(v, 0.0);
-        let plans: Vec<(&str, usize, f64, StringDiscretization)> = c
-            .sine_modes
-            .iter()
-            .map(|&n| {
-                (
-                    "sine",
-                    n,
-                    1.0 / n as f64,
-                    StringDiscretization::Sine { modes: n },
-                )
-            })
-            .chain(c.p1_elements.iter().map(|&m| {
-                (
-                    "p1",
-                    m,
-                    1.0 / m as f64,
-                    StringDiscretization::FiniteElements {
-                        kind: ElementKind::P1,
-                        elements: m,
-                    },
-                )
-            }))
-            .chain(c.hermite_elements.iter().map(|&m| {
-                (
-                    "hermite",
-                    m,
-                    1.0 / m as f64,
-                    StringDiscretization::FiniteElements {
-                        kind: ElementKind::Hermite,
-                        elements: m,
-                    },
-                )
-            }))
+        let exact: Vec<f64> = (1..=c.modes_checked)
+            .map(|k| string_eigenvalue(k, v))
             .collect();
-        for (basis, size, h, disc) in plans {
-            let ev = string_eigenvalues(disc, &data)?;
-            let f = frequencies(&ev);
-            if f.len() < c.modes_checked {
-                return Err(format!(
-                    "{basis} with {size}: fewer than {} frequencies",
-                    c.modes_checked
-                ));
-            }
-            let mode_errors: Vec<f64> = (1..=c.modes_checked)
-                .map(|k| {
-                    let e = string_eigenvalue(k, v);
-                    (f[k - 1] - e).abs() / e
-                })
-                .collect();
-            levels.push(Level {
-                basis: basis.into(),
-                speed: v,
-                size,
-                h,
-                error: mode_errors.iter().copied().fold(0.0, f64::max),
-                mode_errors,
-                max_relative_real_part: relative_real_part(&ev),
-            });
-        }
+        levels.extend(c.levels(v, &MovingStringData::string(v, 0.0), &exact, true)?);
     }
-    for g in &case.gate {
-        let (basis, v) = g.select.series.split_once('/').unwrap_or(("", ""));
-        let v: f64 = v.parse().unwrap_or(f64::NAN);
-        let sel: Vec<&Level> = levels
-            .iter()
-            .filter(|l| l.basis == basis && l.speed == v)
-            .collect();
-        let h: Vec<f64> = sel.iter().map(|l| l.h).collect();
-        let e: Vec<f64> = sel.iter().map(|l| l.error).collect();
-        report.gates.push(g.criteria.evaluate(
-            format!(
-                "{basis}, v̄ = {v}: frequency error vs {}",
-                if basis == "sine" { "1/N" } else { "h" }
-            ),
-            &h,
-            &e,
-        ));
-    }
+    rate_gates(&case.gate, &levels, "frequency error", report)?;
     let worst_re = levels
         .iter()
-        .map(|l| l.max_relative_real_part)
+        .filter_map(|l| l.max_relative_real_part)
         .fold(0.0, f64::max);
     // v̄ = 0: the sine functions are the modes.
     let at_rest = string_eigenvalues(
@@ -371,17 +263,8 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
         Default::default(),
     )
     .map_err(|e| e.to_string())?;
-    let axis = GridAxis::linspace(StringParameter::Speed, l.from, l.to, l.points)
-        .map_err(|e| e.to_string())?;
-    let sweep = string_sweep(
-        &model,
-        &MovingStringData::string(l.from, 0.0),
-        &axis,
-        QuadraticEigenParams::default(),
-        &VerdictParams::default(),
-        0,
-    )
-    .map_err(|e| e.to_string())?;
+    let axis = speed_axis(l.from, l.to, l.points)?;
+    let sweep = speed_sweep(&model, &MovingStringData::string(l.from, 0.0), &axis)?;
     let chosen = upper_branches(&sweep.branches, l.branches);
     let mut worst_branch: f64 = 0.0;
     for (k, &b) in chosen.iter().enumerate() {
@@ -426,15 +309,7 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
         &exact_lines,
     );
     // The same sweep with damping: every branch crosses Re λ = 0 at v̄ = 1.
-    let damped = string_sweep(
-        &model,
-        &MovingStringData::string(l.from, cr.damping),
-        &axis,
-        QuadraticEigenParams::default(),
-        &VerdictParams::default(),
-        0,
-    )
-    .map_err(|e| e.to_string())?;
+    let damped = speed_sweep(&model, &MovingStringData::string(l.from, cr.damping), &axis)?;
     let chosen_d = upper_branches(&damped.branches, l.branches);
     let mut worst_damped: f64 = 0.0;
     for (k, &b) in chosen_d.iter().enumerate() {
@@ -498,29 +373,7 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
         ),
     )?;
     // Convergence plots.
-    let mut figs = Vec::new();
-    for (basis, label, slope) in [
-        ("sine", "1/N", 3.0),
-        ("p1", "h", 2.0),
-        ("hermite", "h", 6.0),
-    ] {
-        let mut f = Figure::new(format!(
-            "{basis}: relative frequency error (modes 1–{})",
-            c.modes_checked
-        ))
-        .x_label(label)
-        .y_label("max relative error")
-        .log_log();
-        for (k, &v) in c.speeds.iter().enumerate() {
-            let pts: Vec<(f64, f64)> = levels
-                .iter()
-                .filter(|l| l.basis == basis && l.speed == v)
-                .map(|l| (l.h, l.error))
-                .collect();
-            f = f.series(Series::line_markers(format!("v̄ = {v}"), pts).color(k));
-        }
-        figs.push(f.reference_slope(slope, format!("slope {slope}")));
-    }
+    let figs = c.figures(&levels, "relative frequency error", [3.0, 2.0, 6.0]);
     ctx.panels(
         report,
         "convergence",

@@ -4,10 +4,7 @@
 
 use std::time::Instant;
 
-use contactlab::model::quasistatic::plane_solver::{
-    PlaneParams, PlaneSolver, PlaneStep, SolverPath,
-};
-use contactlab::time::grid::TimeGrid;
+use contactlab::model::quasistatic::plane_solver::{PlaneStep, SolverPath};
 
 use serde::Deserialize;
 
@@ -19,7 +16,7 @@ use crate::core::report::case_report::{CaseReport, Table};
 use contactlab::fem::norms::l2_difference;
 
 use crate::plane::errors::PlaneErrorObserver;
-use crate::plane::study::{Discretization, ExactSpec};
+use crate::plane::study::{plane_solver, Discretization, ExactSpec};
 use crate::plot::{Figure, Series};
 
 /// The case body of `plane_paths`.
@@ -73,17 +70,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         let mut finals = Vec::new();
         let mut errors = Vec::new();
         for path in [SolverPath::Condensed, SolverPath::Newton] {
-            let grid = TimeGrid::uniform(problem.final_time, steps).map_err(|e| e.to_string())?;
-            let mut solver = PlaneSolver::new(
-                &problem,
-                grid,
-                scheme,
-                PlaneParams {
-                    path,
-                    ..Default::default()
-                },
-            )
-            .map_err(|e| e.to_string())?;
+            let mut solver = plane_solver(&problem, steps, scheme, path)?;
             let mut obs = PlaneErrorObserver::new(
                 &exact,
                 problem.mesh.nodes(),
@@ -99,19 +86,8 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
             // timing without error evaluation (fresh solver: includes its factorizations)
             let mut best = f64::INFINITY;
             for _ in 0..spec.repeats.max(1) {
-                let grid =
-                    TimeGrid::uniform(problem.final_time, steps).map_err(|e| e.to_string())?;
                 let start = Instant::now();
-                let mut s = PlaneSolver::new(
-                    &problem,
-                    grid,
-                    scheme,
-                    PlaneParams {
-                        path,
-                        ..Default::default()
-                    },
-                )
-                .map_err(|e| e.to_string())?;
+                let mut s = plane_solver(&problem, steps, scheme, path)?;
                 s.run(&mut |_: &PlaneStep<'_>| {})
                     .map_err(|e| e.to_string())?;
                 best = best.min(start.elapsed().as_secs_f64());

@@ -4,19 +4,21 @@
 use std::path::Path;
 
 use plotters::coord::Shift;
-use plotters::drawing::{DrawingArea, IntoDrawingArea};
+use plotters::drawing::DrawingArea;
 use plotters::element::Polygon;
-use plotters::prelude::{DrawingBackend, SVGBackend};
+use plotters::prelude::DrawingBackend;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use plotters::style::{FontTransform, RGBAColor, RGBColor, ShapeStyle};
+use plotters::style::{RGBAColor, RGBColor, ShapeStyle};
 
 use crate::plot::colormap::{viridis, MISSING, PALETTE};
 use crate::plot::draw::{
-    draw_line, draw_polyline, draw_rect, draw_text_anchored, ensure_font, fill, stroke, text_size,
-    text_style, DrawResult, GRID_MAJOR, LABEL_SIZE, LEGEND_SIZE, NOTE, NOTE_SIZE, TEXT, TICK_SIZE,
+    draw_line, draw_major_grid, draw_major_ticks, draw_no_data, draw_polyline, draw_rect,
+    draw_text_anchored, draw_title, draw_y_label, fill, stroke, text_size, text_style, DrawResult,
+    LABEL_SIZE, LEGEND_SIZE, TEXT, TICK_SIZE,
 };
 use crate::plot::error::PlotError;
 use crate::plot::geom::{clipped_polylines, ipx, Px, Rect};
+use crate::plot::grid::render_cells;
 use crate::plot::triangles::layout::{
     layout, legend_entry_width, legend_text, Bar, Layout, View, BAR_TICK, LEGEND_GAP,
     LEGEND_SAMPLE, LEGEND_SPACING, SUBDIVIDE_AREA,
@@ -37,23 +39,10 @@ pub(crate) fn render(
     for plot in plots {
         validate(plot, path)?;
     }
-    ensure_font()?;
-    let n = plots.len().max(1);
-    let cols = columns.clamp(1, n);
-    let rows = n.div_ceil(cols);
-    let size = (
-        cell.0.saturating_mul(cols as u32),
-        cell.1.saturating_mul(rows as u32),
-    );
-    let mut buf = String::new();
-    {
-        let root = SVGBackend::with_string(&mut buf, size).into_drawing_area();
-        draw_grid(&root, plots, rows, cols).map_err(|e| PlotError::Drawing {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
-    }
-    Ok(seal_polygons(&buf))
+    let svg = render_cells(plots, columns, cell, path, |area, plot| {
+        draw_plot(area, plot)
+    })?;
+    Ok(seal_polygons(&svg))
 }
 
 /// Gives every opaque filled polygon (the triangles: nothing else in these plots is a polygon)
@@ -103,20 +92,6 @@ pub(super) fn seal_polygons(svg: &str) -> String {
         out.push_str("</g>\n");
     }
     out
-}
-
-pub(super) fn draw_grid<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    plots: &[TriangleMeshPlot],
-    rows: usize,
-    cols: usize,
-) -> DrawResult<DB> {
-    root.fill(&RGBColor(255, 255, 255))?;
-    let cells = root.split_evenly((rows, cols));
-    for (plot, cell) in plots.iter().zip(cells.iter()) {
-        draw_plot(cell, plot)?;
-    }
-    root.present()
 }
 
 /// Fills a triangle given in pixels, skipping those that round to zero area.
@@ -323,14 +298,12 @@ pub(super) fn draw_plot<DB: DrawingBackend>(
     let px_y = |t: f64| view.px((view.x.0, t)).1;
 
     // Grid, mesh, wireframe, outlines.
-    for (t, _) in &lay.x_axis.major {
-        let x = px_x(*t);
-        draw_polyline(area, &[(x, r.top), (x, r.bottom)], stroke(GRID_MAJOR, 1))?;
-    }
-    for (t, _) in &lay.y_axis.major {
-        let y = px_y(*t);
-        draw_polyline(area, &[(r.left, y), (r.right, y)], stroke(GRID_MAJOR, 1))?;
-    }
+    draw_major_grid(
+        area,
+        &r,
+        lay.x_axis.major.iter().map(|(t, _)| px_x(*t)),
+        lay.y_axis.major.iter().map(|(t, _)| px_y(*t)),
+    )?;
     draw_fills(area, &mesh, &view)?;
     if plot.wireframe {
         draw_wireframe(area, &mesh, &view)?;
@@ -351,28 +324,12 @@ pub(super) fn draw_plot<DB: DrawingBackend>(
 
     // Frame, ticks and tick labels.
     draw_rect(area, &r, stroke(TEXT, 1))?;
-    for (t, label) in &lay.x_axis.major {
-        let x = px_x(*t);
-        draw_polyline(area, &[(x, r.bottom), (x, r.bottom + 6.0)], stroke(TEXT, 1))?;
-        draw_text_anchored(
-            area,
-            label,
-            TICK_SIZE,
-            (HPos::Center, VPos::Top),
-            (x, r.bottom + 9.0),
-        )?;
-    }
-    for (t, label) in &lay.y_axis.major {
-        let y = px_y(*t);
-        draw_polyline(area, &[(r.left - 6.0, y), (r.left, y)], stroke(TEXT, 1))?;
-        draw_text_anchored(
-            area,
-            label,
-            TICK_SIZE,
-            (HPos::Right, VPos::Center),
-            (r.left - 9.0, y),
-        )?;
-    }
+    draw_major_ticks(
+        area,
+        &r,
+        lay.x_axis.major.iter().map(|(t, l)| (px_x(*t), l.as_str())),
+        lay.y_axis.major.iter().map(|(t, l)| (px_y(*t), l.as_str())),
+    )?;
 
     if let (Some(bar), Some(scale)) = (&lay.bar, mesh.scale) {
         draw_bar(
@@ -384,26 +341,11 @@ pub(super) fn draw_plot<DB: DrawingBackend>(
     }
 
     if !mesh.has_data() {
-        let style = text_style(NOTE_SIZE + 4.0)
-            .color(&NOTE)
-            .pos(Pos::new(HPos::Center, VPos::Center));
-        area.draw_text(
-            "no data",
-            &style,
-            ipx(((r.left + r.right) / 2.0, (r.top + r.bottom) / 2.0)),
-        )?;
+        draw_no_data(area, &r)?;
     }
 
     // Title, axis labels, legend.
-    if !plot.title.is_empty() {
-        draw_text_anchored(
-            area,
-            &plot.title,
-            lay.title_size,
-            (HPos::Center, VPos::Top),
-            (w / 2.0, 10.0),
-        )?;
-    }
+    draw_title(area, &plot.title, lay.title_size, w)?;
     let tick_h = text_size("0", TICK_SIZE).1;
     let mut below = r.bottom + 9.0 + tick_h + 8.0;
     if !plot.x_label.is_empty() {
@@ -418,12 +360,8 @@ pub(super) fn draw_plot<DB: DrawingBackend>(
     }
     if !plot.y_label.is_empty() {
         let label_h = text_size("Ag", LABEL_SIZE).1;
-        let style = text_style(LABEL_SIZE)
-            .color(&TEXT)
-            .transform(FontTransform::Rotate270)
-            .pos(Pos::new(HPos::Center, VPos::Top));
         let x = r.left - 9.0 - lay.y_tick_w - 10.0 - label_h;
-        area.draw_text(&plot.y_label, &style, ipx((x, (r.top + r.bottom) / 2.0)))?;
+        draw_y_label(area, &plot.y_label, x, &r)?;
     }
     draw_legend(area, &mesh, &lay, below, w)
 }

@@ -285,23 +285,9 @@ pub(super) fn layout(mesh: &Mesh, (w, h): (f64, f64)) -> Layout {
     };
 
     // Two passes: margins from estimated ticks, then from the ticks of the fitted box.
-    let mut left_w = 10.0 + y_label_w + 30.0 + 9.0;
-    let mut right_w = bar_w_for(avail_bottom - avail_top);
-    let mut view = fit_equal_aspect(
-        x_range,
-        y_range,
-        Rect {
-            left: left_w,
-            top: avail_top,
-            right: (w - right_w).max(left_w + 20.0),
-            bottom: avail_bottom,
-        },
-    );
-    for _ in 0..2 {
-        let (_, y_axis) = axes_for(&view);
-        left_w = 10.0 + y_label_w + tick_width(&y_axis) + 9.0;
-        right_w = bar_w_for(view.rect.bottom - view.rect.top);
-        view = fit_equal_aspect(
+    // The box fitted between margins of `left_w` and `right_w` pixels.
+    let fit = |left_w: f64, right_w: f64| {
+        fit_equal_aspect(
             x_range,
             y_range,
             Rect {
@@ -310,7 +296,16 @@ pub(super) fn layout(mesh: &Mesh, (w, h): (f64, f64)) -> Layout {
                 right: (w - right_w).max(left_w + 20.0),
                 bottom: avail_bottom,
             },
-        );
+        )
+    };
+    let mut left_w = 10.0 + y_label_w + 30.0 + 9.0;
+    let mut right_w = bar_w_for(avail_bottom - avail_top);
+    let mut view = fit(left_w, right_w);
+    for _ in 0..2 {
+        let (_, y_axis) = axes_for(&view);
+        left_w = 10.0 + y_label_w + tick_width(&y_axis) + 9.0;
+        right_w = bar_w_for(view.rect.bottom - view.rect.top);
+        view = fit(left_w, right_w);
     }
     // Centre the group (y labels, box, colour bar) horizontally in the cell.
     let group_w = left_w + (view.rect.right - view.rect.left) + right_w;

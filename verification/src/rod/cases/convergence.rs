@@ -11,69 +11,50 @@ use contactlab::model::quasistatic::scheme::TimeScheme;
 
 use crate::core::case::Case;
 use crate::core::context::RunContext;
-use crate::core::convergence::{self, ConvergenceSpec, ModelGate, ReferenceSpec, SweepSelect};
+use crate::core::convergence;
 use crate::core::format::{invalid, CaseError};
-use crate::core::gate::RateGate;
 use crate::core::report::case_report::CaseReport;
-use crate::core::sweep::SweepSpec;
 use crate::rod::cases::paper_figures::{self, FiguresSpec};
 use crate::rod::errors::ROD_ERRORS;
 use crate::rod::study::{Discretization, ExactSpec, RodStudy};
 
-/// The case body of `rod_convergence`.
+/// The rod's keys of a `rod_convergence` body (the sweeps, gates and references are the core's).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ConvergenceCase {
+pub struct RodKeys {
     /// An inline rod scene; mesh and time are set per run.
     pub scene: Option<toml::Table>,
     pub exact: Option<ExactSpec>,
     #[serde(default)]
     pub discretization: Discretization,
-    #[serde(default)]
-    pub sweep: Vec<SweepSpec<TimeScheme>>,
-    #[serde(default)]
-    pub gate: Vec<RateGate<SweepSelect<TimeScheme>>>,
-    #[serde(default)]
-    pub model_gate: Vec<ModelGate<TimeScheme>>,
-    #[serde(default)]
-    pub reference: Vec<ReferenceSpec<TimeScheme>>,
     pub figures: Option<FiguresSpec>,
 }
 
-impl ConvergenceCase {
-    /// The generic part.
-    fn spec(&self) -> ConvergenceSpec<TimeScheme> {
-        ConvergenceSpec {
-            sweeps: self.sweep.clone(),
-            gates: self.gate.clone(),
-            model_gates: self.model_gate.clone(),
-            references: self.reference.clone(),
-        }
-    }
+/// The case body of `rod_convergence`.
+pub type ConvergenceCase = convergence::ConvergenceCase<RodKeys, TimeScheme>;
 
-    /// Parses and checks the case body.
-    pub fn parse(case: &Case) -> Result<Self, CaseError> {
-        let c: Self = case.body()?;
-        c.spec().check(case.path(), &ROD_ERRORS)?;
-        if c.scene.is_none() && c.exact.is_none() {
-            return Err(invalid(
-                case.path(),
-                "scene",
-                "(missing)",
-                "a [scene] or an [exact] manufactured solution",
-            ));
-        }
-        Ok(c)
+/// Parses and checks the case body (it needs a scene or an exact solution).
+pub fn parse(case: &Case) -> Result<ConvergenceCase, CaseError> {
+    let c = ConvergenceCase::parse(case, &ROD_ERRORS)?;
+    if c.family.scene.is_none() && c.family.exact.is_none() {
+        return Err(invalid(
+            case.path(),
+            "scene",
+            "(missing)",
+            "a [scene] or an [exact] manufactured solution",
+        ));
     }
+    Ok(c)
 }
 
 /// Runs the case.
 pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
-    let c = ConvergenceCase::parse(case).map_err(|e| e.to_string())?;
-    let study = RodStudy::new(c.scene.as_ref(), c.exact.as_ref(), &c.discretization)
+    let c = parse(case).map_err(|e| e.to_string())?;
+    let k = &c.family;
+    let study = RodStudy::new(k.scene.as_ref(), k.exact.as_ref(), &k.discretization)
         .map_err(|e| e.to_string())?;
-    convergence::run(&c.spec(), &study, ctx, report)?;
-    if let Some(fig) = &c.figures {
+    convergence::run(&c.spec, &study, ctx, report)?;
+    if let Some(fig) = &k.figures {
         paper_figures::draw(fig, &study, ctx, report)?;
     }
     Ok(())

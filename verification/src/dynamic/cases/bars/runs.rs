@@ -4,17 +4,22 @@
 //! and tables of every case of the two kinds, and the plots they share (the audits of the shown
 //! runs, histories against the exact ones, convergence).
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use rayon::prelude::*;
 
 use contactlab::model::dynamic::audit::EnergyAudit;
+use contactlab::model::dynamic::bar::BarBody;
+use contactlab::model::dynamic::contact_model::{BarEnd, ContactModel};
 use contactlab::model::dynamic::scheme::DynamicScheme;
-use contactlab::model::dynamic::solver::{DynamicSolution, DynamicSolver, StepView};
+use contactlab::model::dynamic::solver::{
+    DynamicParams, DynamicProblem, DynamicSolution, DynamicSolver, StepView,
+};
 
 use crate::core::context::RunContext;
 use crate::core::report::case_report::CaseReport;
-use crate::dynamic::cases::bars::family::FamilySpec;
+use crate::dynamic::cases::bars::family::{BarSetup, FamilySpec};
 use crate::dynamic::cases::bars::gates::{
     ceiling_gates, rate_gates, worst_summary, CeilingGate, RateGate,
 };
@@ -60,6 +65,67 @@ impl<H> RunOutput<H> {
             history,
             audit: record.then_some(solution.audit),
         }
+    }
+}
+
+/// One family's run of a bar whose left end meets a rigid wall: the body, the solver, and what
+/// the observer of the run needs.
+pub struct WallRun {
+    /// The body (shared with the solver's problem).
+    pub body: Arc<BarBody>,
+    pub solver: DynamicSolver,
+    /// The sign s of the contact node: the applied normal force is −s · (the generalized force on
+    /// the normal dof) (`NodeForces::normal` is not it for the tilted HLT force: it holds
+    /// λ_{n+1/2} without the correction).
+    pub sign: f64,
+    /// The element size h.
+    pub h: f64,
+    /// The time step k.
+    pub k: f64,
+    /// Whether the scheme is of midpoint type (see [`step_impulse`]).
+    pub midpoint: bool,
+}
+
+impl WallRun {
+    /// `family` on the bar `setup` with M equal elements and N steps up to T, `(M, N, T)` =
+    /// `level`, the left end against a wall at x = `wall` (the family's treatment for the
+    /// element size h = L/M), from the initial displacement and velocity (free dofs) that
+    /// `initial` gives for the body.
+    pub fn new(
+        setup: &BarSetup,
+        family: &FamilySpec,
+        (elements, steps, final_time): (usize, usize, f64),
+        wall: f64,
+        initial: impl FnOnce(&BarBody) -> (Vec<f64>, Vec<f64>),
+    ) -> Result<Self, String> {
+        let body = setup.body(elements, family.mass)?;
+        let h = setup.length / elements as f64;
+        let k = final_time / steps as f64;
+        let treatment = family.normal_treatment(h, setup.young);
+        let contact = ContactModel::bar_wall(&body, BarEnd::Left, wall, treatment)
+            .map_err(|e| e.to_string())?;
+        let sign = contact.nodes[0].sign;
+        let (initial_displacement, initial_velocity) = initial(&body);
+        let body = Arc::new(body);
+        let problem = DynamicProblem {
+            body: body.clone(),
+            contact: Some(contact),
+            scheme: family.scheme,
+            final_time,
+            steps,
+            initial_displacement,
+            initial_velocity,
+        };
+        let solver =
+            DynamicSolver::new(problem, DynamicParams::default()).map_err(|e| e.to_string())?;
+        Ok(Self {
+            body,
+            solver,
+            sign,
+            h,
+            k,
+            midpoint: family.scheme.is_midpoint_type(),
+        })
     }
 }
 

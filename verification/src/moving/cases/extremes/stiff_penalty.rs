@@ -6,13 +6,13 @@ use contactlab::model::moving::string_data::ContactModel;
 use contactlab::model::moving::string_model::{
     MovingStringModel, MovingStringParams, PenaltyCondensation, StringDiscretization,
 };
-use contactlab::solve::quadratic_eigen::solve_generalized_quadratic_eigen;
 
 use super::systems::{eigen, osc};
 use super::StiffPenalty;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
 use crate::moving::errors::upper_half;
+use crate::moving::study::pencil_eigen;
 use crate::stats::rate_fit::fit_rate;
 
 /// What the study measured: per k̄_p (k̄_p, series error, Schur error, QZ error, ‖K_full‖/2).
@@ -57,14 +57,7 @@ pub(super) fn study(
         let a = upper_half(&eigen(&series.system(&d).map_err(|e| e.to_string())?)?.0);
         let b = upper_half(&eigen(&schur.system(&d).map_err(|e| e.to_string())?)?.0);
         let full = series.system_with_bushing(&d).map_err(|e| e.to_string())?;
-        let qz = solve_generalized_quadratic_eigen(
-            full.mass.as_ref(),
-            full.velocity_matrix().as_ref(),
-            full.stiffness_matrix().as_ref(),
-            1e-10,
-        )
-        .map(|r| upper_half(&r.eigenvalues))
-        .ok();
+        let qz = pencil_eigen(&full).map(|r| upper_half(&r.eigenvalues)).ok();
         let rel = |x: &[c64]| -> f64 {
             (0..4)
                 .map(|k| {

@@ -5,11 +5,14 @@
 use nalgebra::Complex;
 
 use contactlab::model::moving::c64;
-use contactlab::model::moving::string_data::{ContactModel, MovingStringData, OscillatorData};
+use contactlab::model::moving::string_data::{ContactModel, MovingStringData};
 use contactlab::model::moving::system::MovingSystem;
 use contactlab::model::moving::Mat;
 use contactlab::solve::quadratic_eigen::QuadraticEigenParams;
 
+use crate::moving::study::Bushing;
+
+/// The eigenvalues of `s` (default eigensolver parameters) and the norm of its companion form.
 pub(super) fn eigen(s: &MovingSystem) -> Result<(Vec<c64>, f64), String> {
     let r = s
         .eigen(QuadraticEigenParams::default())
@@ -17,23 +20,22 @@ pub(super) fn eigen(s: &MovingSystem) -> Result<(Vec<c64>, f64), String> {
     Ok((r.eigenvalues, r.stats.companion_norm))
 }
 
+/// The standard oscillator of the extreme studies: c̄ = 2, m̄ = 1/2 at ā = 0.3.
+const STANDARD: Bushing = Bushing {
+    stiffness: 2.0,
+    mass: 0.5,
+    position: 0.3,
+};
+
+/// The string at speed v̄ = `speed` with damping ᾱ = `damping` and the standard oscillator, held
+/// by `contact` with the friction product μh̄ = `friction`.
 pub(super) fn osc(
     speed: f64,
     damping: f64,
     contact: ContactModel,
     friction: f64,
 ) -> MovingStringData {
-    MovingStringData {
-        speed,
-        damping,
-        oscillator: Some(OscillatorData {
-            stiffness: 2.0,
-            mass: 0.5,
-            position: 0.3,
-            contact,
-            friction,
-        }),
-    }
+    STANDARD.data(speed, damping, contact, friction)
 }
 
 /// The 2-dof circulatory system q̈ + (K + pN) q = 0, K = diag(1, 4), N = [0 1; −1 0]:

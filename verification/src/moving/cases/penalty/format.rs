@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::core::format::CaseError;
 use crate::core::format::{at_least, positive};
 use crate::core::gate::RateGate;
-use crate::moving::study::SeriesSelect;
+use crate::moving::study::{Bushing, SeriesSelect};
 
 /// The case format of `moving_penalty`.
 #[derive(Debug, Clone, Deserialize)]
@@ -74,6 +74,17 @@ pub struct PenaltyMap {
     pub penalties: usize,
     pub penalty_from: f64,
     pub penalty_to: f64,
+}
+
+impl Model {
+    /// The oscillator of the model.
+    pub fn bushing(&self) -> Bushing {
+        Bushing {
+            stiffness: self.stiffness,
+            mass: self.mass,
+            position: self.position,
+        }
+    }
 }
 
 impl PenaltyCase {

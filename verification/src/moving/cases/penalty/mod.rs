@@ -25,48 +25,24 @@ pub use format::{Friction, Frictionless, Model, PenaltyCase, PenaltyMap};
 
 use serde::Serialize;
 
-use contactlab::model::moving::c64;
 use contactlab::model::moving::properties::skew_defect;
 use contactlab::model::moving::stability::Verdict;
 use contactlab::model::moving::stability_map::{
     string_stability_map, GridAxis, StabilityMapParams,
 };
-use contactlab::model::moving::string_data::{
-    ContactModel, MovingStringData, OscillatorData, StringParameter,
-};
+use contactlab::model::moving::string_data::{ContactModel, MovingStringData, StringParameter};
 use contactlab::model::moving::string_model::{
     MovingStringModel, MovingStringParams, PenaltyCondensation, StringDiscretization,
 };
-use contactlab::solve::quadratic_eigen::{solve_generalized_quadratic_eigen, QuadraticEigenParams};
 
 use crate::core::context::RunContext;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
 use crate::moving::errors::{max_real_part, upper_half};
 use crate::moving::plots::map_figure;
-use crate::moving::study::model_eigenvalues;
+use crate::moving::study::{flutter_onset, model_eigenvalues, pencil_eigen};
 use crate::plot::{Figure, Series};
 use crate::stats::rate_fit::fit_rate;
-
-fn data(
-    m: &Model,
-    speed: f64,
-    damping: f64,
-    contact: ContactModel,
-    friction: f64,
-) -> MovingStringData {
-    MovingStringData {
-        speed,
-        damping,
-        oscillator: Some(OscillatorData {
-            stiffness: m.stiffness,
-            mass: m.mass,
-            position: m.position,
-            contact,
-            friction,
-        }),
-    }
-}
 
 /// The smallest friction product μh̄ in (0, hi] with max Re λ > 0, by bisection (the system at
 /// μh̄ = 0 must be stable).
@@ -83,26 +59,7 @@ fn critical_friction(
             .map_err(|e| e.to_string())?;
         model_eigenvalues(model, &d).map(|ev| max_real_part(&ev))
     };
-    if at(0.0)? >= 0.0 {
-        return Err("the system is not stable without friction".into());
-    }
-    let (mut lo, mut hi) = (0.0, hi);
-    while at(hi)? <= 0.0 {
-        lo = hi;
-        hi *= 2.0;
-        if hi > 1e12 {
-            return Err("no flutter boundary below μh̄ = 1e12".into());
-        }
-    }
-    while hi - lo > rel_tol * hi {
-        let mid = 0.5 * (lo + hi);
-        if at(mid)? > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok(0.5 * (lo + hi))
+    flutter_onset(at, "μh̄", hi, rel_tol, 1e12)
 }
 
 /// The flutter boundary at one speed: (v̄, [(k̄_p (∞: ideal), μh̄*, nominal p*)]).
@@ -121,47 +78,33 @@ pub fn run(case: &PenaltyCase, ctx: &RunContext, report: &mut CaseReport) -> Res
         },
     )
     .map_err(|e| e.to_string())?;
-    let eig = |model: &MovingStringModel, d: &MovingStringData| -> Result<Vec<c64>, String> {
-        Ok(model
-            .system(d)
-            .map_err(|e| e.to_string())?
-            .eigen(QuadraticEigenParams::default())
-            .map_err(|e| e.to_string())?
-            .eigenvalues)
-    };
 
     // Frictionless: convergence to ideal contact and agreement of the three paths.
     let f = &case.frictionless;
-    let ideal = upper_half(&eig(
+    let ideal = upper_half(&model_eigenvalues(
         &series,
-        &data(m, f.speed, f.damping, ContactModel::Ideal, 0.0),
+        &m.bushing()
+            .data(f.speed, f.damping, ContactModel::Ideal, 0.0),
     )?);
     let mut conv = Vec::new();
     let mut agree: f64 = 0.0;
     let mut infinite_counts = Vec::new();
     for &kp in &f.penalties {
-        let d = data(
-            m,
+        let d = m.bushing().data(
             f.speed,
             f.damping,
             ContactModel::Penalty { stiffness: kp },
             0.0,
         );
-        let pen = upper_half(&eig(&series, &d)?);
+        let pen = upper_half(&model_eigenvalues(&series, &d)?);
         let err = (0..f.modes_checked)
             .map(|k| (pen[k] - ideal[k]).norm() / ideal[k].norm())
             .fold(0.0, f64::max);
         conv.push((kp, err));
         if kp <= f.agreement_up_to {
-            let via_schur = upper_half(&eig(&schur, &d)?);
+            let via_schur = upper_half(&model_eigenvalues(&schur, &d)?);
             let full = series.system_with_bushing(&d).map_err(|e| e.to_string())?;
-            let qz = solve_generalized_quadratic_eigen(
-                full.mass.as_ref(),
-                full.velocity_matrix().as_ref(),
-                full.stiffness_matrix().as_ref(),
-                1e-10,
-            )
-            .map_err(|e| e.to_string())?;
+            let qz = pencil_eigen(&full).map_err(|e| e.to_string())?;
             infinite_counts.push((kp, qz.stats.infinite_eigenvalues));
             let via_qz = upper_half(&qz.eigenvalues);
             for k in 0..f.modes_checked {
@@ -203,8 +146,7 @@ pub fn run(case: &PenaltyCase, ctx: &RunContext, report: &mut CaseReport) -> Res
     let fr = &case.friction;
     let mut nominal = Vec::new();
     for &kp in &fr.penalties {
-        let d = data(
-            m,
+        let d = m.bushing().data(
             0.5,
             fr.damping,
             ContactModel::Penalty { stiffness: kp },
@@ -220,7 +162,7 @@ pub fn run(case: &PenaltyCase, ctx: &RunContext, report: &mut CaseReport) -> Res
         ));
     }
     let ideal_n = series
-        .system(&data(m, 0.5, fr.damping, ContactModel::Ideal, 0.1))
+        .system(&m.bushing().data(0.5, fr.damping, ContactModel::Ideal, 0.1))
         .map_err(|e| e.to_string())?
         .circulatory
         .norm_l2();
@@ -259,17 +201,13 @@ pub fn run(case: &PenaltyCase, ctx: &RunContext, report: &mut CaseReport) -> Res
     let mut identity_err: f64 = 0.0;
     let mut conv_rows: Vec<(f64, f64)> = Vec::new();
     for &v in &fr.speeds {
-        let ideal_b = data(m, v, fr.damping, ContactModel::Ideal, 0.0);
+        let ideal_b = m.bushing().data(v, fr.damping, ContactModel::Ideal, 0.0);
         let mu_ideal = critical_friction(&series, &ideal_b, 0.05, fr.bisection_tolerance)?;
         let mut row = vec![(f64::INFINITY, mu_ideal, mu_ideal * m.stiffness)];
         for &kp in &fr.penalties {
-            let pen_b = data(
-                m,
-                v,
-                fr.damping,
-                ContactModel::Penalty { stiffness: kp },
-                0.0,
-            );
+            let pen_b =
+                m.bushing()
+                    .data(v, fr.damping, ContactModel::Penalty { stiffness: kp }, 0.0);
             let mu_pen = critical_friction(&schur, &pen_b, mu_ideal, fr.bisection_tolerance)?;
             // The ideal model with the series spring c_eff, computed independently.
             let c_eff = m.stiffness * kp / (m.stiffness + kp);
@@ -353,13 +291,13 @@ pub fn run(case: &PenaltyCase, ctx: &RunContext, report: &mut CaseReport) -> Res
     let mp = &case.map;
     let mu_ref = critical_friction(
         &series,
-        &data(m, mp.reference_speed, fr.damping, ContactModel::Ideal, 0.0),
+        &m.bushing()
+            .data(mp.reference_speed, fr.damping, ContactModel::Ideal, 0.0),
         0.05,
         fr.bisection_tolerance,
     )?;
     let mu_h = mp.friction_factor * mu_ref;
-    let base = data(
-        m,
+    let base = m.bushing().data(
         mp.reference_speed,
         fr.damping,
         ContactModel::Penalty { stiffness: 1.0 },
@@ -393,7 +331,9 @@ pub fn run(case: &PenaltyCase, ctx: &RunContext, report: &mut CaseReport) -> Res
     let mut column = Vec::new();
     for (iy, &kp) in y.values.iter().enumerate() {
         let c_eff = m.stiffness * kp / (m.stiffness + kp);
-        let mut eff = data(m, v_ref, fr.damping, ContactModel::Ideal, 0.0);
+        let mut eff = m
+            .bushing()
+            .data(v_ref, fr.damping, ContactModel::Ideal, 0.0);
         StringParameter::OscillatorStiffness
             .set(&mut eff, c_eff)
             .map_err(|e| e.to_string())?;

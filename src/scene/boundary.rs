@@ -1,0 +1,104 @@
+//! The boundary parts of a plane body's scene, shared by the plane and the dynamic scenes:
+//! `[[dirichlet]]` and `[[traction]]` sections, each selecting its edges by side or by a `where`
+//! expression, and vectors of two numbers or expressions.
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::InputError;
+use crate::field::{Expression, Field};
+use crate::mesh::triangle::RectangleSide;
+use crate::model::quasistatic::plane::{BoundarySelector, DirichletPart, Support, TractionPart};
+use crate::scene::common::missing;
+use crate::scene::field_spec::FieldSpec;
+
+/// `[[dirichlet]]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DirichletSection {
+    #[serde(default)]
+    pub sides: Vec<RectangleSide>,
+    /// Instead of `sides`: an expression of x, y selecting the boundary edges whose midpoint makes
+    /// it positive (e.g. `"1e-9 - x"` for the edges on x = 0).
+    #[serde(rename = "where")]
+    pub where_: Option<String>,
+    pub support: Support,
+}
+
+/// `[[traction]]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSection {
+    #[serde(default)]
+    pub sides: Vec<RectangleSide>,
+    #[serde(rename = "where")]
+    pub where_: Option<String>,
+    pub value: [FieldSpec; 2],
+}
+
+/// The boundary part of a section: its sides, or the edges whose midpoint makes `where` positive.
+pub(crate) fn selector(
+    prefix: &str,
+    sides: &[RectangleSide],
+    where_: Option<&String>,
+) -> Result<BoundarySelector, InputError> {
+    match (sides.is_empty(), where_) {
+        (false, None) => Ok(BoundarySelector::Sides(sides.to_vec())),
+        (true, Some(text)) => {
+            let e = Expression::parse(&format!("{prefix}.where"), text)?;
+            Ok(BoundarySelector::Predicate(Arc::new(move |p: [f64; 2]| {
+                e.eval(p[0], p[1], 0.0) > 0.0
+            })))
+        }
+        (false, Some(_)) => Err(InputError::new(
+            format!("{prefix}.where"),
+            "(given with sides)",
+            "either sides or where",
+        )),
+        (true, None) => Err(missing(
+            format!("{prefix}.sides"),
+            "sides = [...] or where = \"expression of x, y\"",
+        )),
+    }
+}
+
+/// The two fields of the vector `v`, its components named `{prefix}[0]` and `{prefix}[1]`.
+pub(crate) fn vector(prefix: &str, v: &[FieldSpec; 2]) -> Result<[Field; 2], InputError> {
+    Ok([
+        v[0].to_field(&format!("{prefix}[0]"))?,
+        v[1].to_field(&format!("{prefix}[1]"))?,
+    ])
+}
+
+/// The Dirichlet parts of the `[[dirichlet]]` sections, section i named `dirichlet[i]`.
+pub(crate) fn dirichlet_parts(
+    sections: &[DirichletSection],
+) -> Result<Vec<DirichletPart>, InputError> {
+    sections
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            Ok(DirichletPart {
+                boundary: selector(&format!("dirichlet[{i}]"), &d.sides, d.where_.as_ref())?,
+                support: d.support,
+            })
+        })
+        .collect()
+}
+
+/// The traction parts of the `[[traction]]` sections, section i named `traction[i]`.
+pub(crate) fn traction_parts(
+    sections: &[TractionSection],
+) -> Result<Vec<TractionPart>, InputError> {
+    sections
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            Ok(TractionPart {
+                boundary: selector(&format!("traction[{i}]"), &t.sides, t.where_.as_ref())?,
+                traction: vector(&format!("traction[{i}].value"), &t.value)?,
+            })
+        })
+        .collect()
+}

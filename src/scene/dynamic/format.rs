@@ -1,0 +1,178 @@
+//! The file format of a dynamic scene: its sections, and the values (one for a bar, two for a
+//! plane body) given as numbers or expressions.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::InputError;
+use crate::field::Field;
+use crate::mesh::triangle::{Diagonal, RectangleSide};
+use crate::model::dynamic::bar::MassMatrix;
+use crate::model::dynamic::contact_model::BarEnd;
+use crate::model::dynamic::scheme::DynamicScheme;
+use crate::scene::boundary::{vector, DirichletSection, TractionSection};
+use crate::scene::field_spec::FieldSpec;
+
+/// The file format of a dynamic scene (see the module docs).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicSceneFile {
+    pub model: String,
+    #[serde(default)]
+    pub title: String,
+    pub body: BodySection,
+    pub material: DynamicMaterialSection,
+    pub time: DynamicTimeSection,
+    #[serde(default)]
+    pub initial: DynamicInitialSection,
+    pub body_force: Option<ValueSection>,
+    #[serde(default)]
+    pub dirichlet: Vec<DirichletSection>,
+    #[serde(default)]
+    pub traction: Vec<TractionSection>,
+    pub contact: Option<DynamicContactSection>,
+    #[serde(default)]
+    pub output: DynamicOutputSection,
+    #[serde(default)]
+    pub solver: DynamicSolverSection,
+}
+
+/// `[body]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySection {
+    pub shape: String,
+    pub density: f64,
+    #[serde(default)]
+    pub mass: MassMatrix,
+    // bar
+    pub length: Option<f64>,
+    pub elements: Option<usize>,
+    pub area: Option<f64>,
+    pub supports: Option<Vec<BarEnd>>,
+    // rectangle
+    pub origin: Option<[f64; 2]>,
+    pub size: Option<[f64; 2]>,
+    pub divisions: Option<[usize; 2]>,
+    pub diagonal: Option<Diagonal>,
+    // disk, annulus
+    pub center: Option<[f64; 2]>,
+    pub radius: Option<f64>,
+    pub rings: Option<usize>,
+    pub inner: Option<f64>,
+    pub outer: Option<f64>,
+    pub radial: Option<usize>,
+    pub around: Option<usize>,
+}
+
+/// `[material]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicMaterialSection {
+    pub law: String,
+    pub young: f64,
+    pub poisson: Option<f64>,
+}
+
+/// `[time]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicTimeSection {
+    pub final_time: f64,
+    pub steps: usize,
+    pub scheme: DynamicScheme,
+}
+
+/// One value (bar) or two (plane), numbers or expressions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum ValueSpec {
+    Scalar(FieldSpec),
+    Vector([FieldSpec; 2]),
+}
+
+/// `[body_force]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ValueSection {
+    pub value: ValueSpec,
+}
+
+/// `[initial]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicInitialSection {
+    pub displacement: Option<ValueSpec>,
+    pub velocity: Option<ValueSpec>,
+}
+
+/// `[contact]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicContactSection {
+    pub treatment: String,
+    pub stiffness: Option<f64>,
+    pub depth: Option<f64>,
+    // 2D
+    pub level: Option<f64>,
+    #[serde(default)]
+    pub sides: Vec<RectangleSide>,
+    #[serde(rename = "where")]
+    pub where_: Option<String>,
+    // bar
+    pub end: Option<BarEnd>,
+    pub wall: Option<f64>,
+    pub friction: Option<FrictionSection>,
+}
+
+/// `[contact.friction]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSection {
+    pub law: String,
+    pub mu0: f64,
+    pub depth: Option<f64>,
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicOutputSection {
+    #[serde(default)]
+    pub times: Vec<f64>,
+}
+
+/// `[solver]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicSolverSection {
+    pub tolerance: Option<f64>,
+    pub max_iterations: Option<usize>,
+    pub path: Option<String>,
+}
+
+/// The one field of the value `v` of a bar (zero when absent); `field` names it in errors.
+pub(super) fn scalar(field: &str, v: &Option<ValueSpec>) -> Result<Field, InputError> {
+    match v {
+        None => Ok(Field::Constant(0.0)),
+        Some(ValueSpec::Scalar(s)) => s.to_field(field),
+        Some(ValueSpec::Vector(_)) => Err(InputError::new(
+            field,
+            "(two values)",
+            "one value for a bar",
+        )),
+    }
+}
+
+/// The two fields of the value `v` of a plane body (zero when absent); `field` names it in
+/// errors.
+pub(super) fn pair(field: &str, v: &Option<ValueSpec>) -> Result<[Field; 2], InputError> {
+    match v {
+        None => Ok([Field::Constant(0.0), Field::Constant(0.0)]),
+        Some(ValueSpec::Vector(p)) => vector(field, p),
+        Some(ValueSpec::Scalar(_)) => Err(InputError::new(
+            field,
+            "(one value)",
+            "two values [x, y] for a plane body",
+        )),
+    }
+}

@@ -1,0 +1,169 @@
+//! A plane body in a dynamic scene: the mesh of its shape, the body with its boundary parts,
+//! its half-space contact and its initial state.
+
+use std::sync::Arc;
+
+use crate::error::{Error, InputError};
+use crate::field::Field;
+use crate::material::hyperelastic::{Hyperelastic2d, LinearElastic, NeoHooke, StVenantKirchhoff};
+use crate::mesh::generators::{annulus, disk};
+use crate::mesh::triangle::{Grading, TriangleMesh};
+use crate::model::dynamic::contact_model::ContactModel;
+use crate::model::dynamic::plane_body::{PlaneBody, PlaneBodyData};
+use crate::model::quasistatic::plane::BoundarySelector;
+use crate::scene::boundary::{dirichlet_parts, selector, traction_parts};
+use crate::scene::common::{missing, reject_keys};
+use crate::scene::dynamic::body::{BodyParts, SceneBody};
+use crate::scene::dynamic::contact::{friction, treatment};
+use crate::scene::dynamic::format::{pair, BodySection, DynamicSceneFile};
+
+/// The mesh of the plane shape `b.shape` (`rectangle`, `disk` or `annulus`) from its keys;
+/// `given` lists which keys of `[body]` are present (a key of another shape is an error).
+pub(super) fn mesh(b: &BodySection, given: &[(&str, bool)]) -> Result<TriangleMesh, Error> {
+    Ok(match b.shape.as_str() {
+        "rectangle" => {
+            reject_keys(
+                "body",
+                ("shape", "rectangle"),
+                given,
+                &["origin", "size", "divisions", "diagonal"],
+            )?;
+            TriangleMesh::graded_rectangle(
+                b.origin.unwrap_or([0.0, 0.0]),
+                b.size
+                    .ok_or_else(|| missing("body.size", "[width, height]"))?,
+                b.divisions
+                    .ok_or_else(|| missing("body.divisions", "[n_x, n_y]"))?,
+                b.diagonal.unwrap_or_default(),
+                [Grading::UNIFORM; 2],
+            )?
+        }
+        "disk" => {
+            reject_keys(
+                "body",
+                ("shape", "disk"),
+                given,
+                &["center", "radius", "rings"],
+            )?;
+            disk(
+                b.center.ok_or_else(|| missing("body.center", "[x, y]"))?,
+                b.radius
+                    .ok_or_else(|| missing("body.radius", "a radius > 0"))?,
+                b.rings
+                    .ok_or_else(|| missing("body.rings", "a number of rings ≥ 1"))?,
+            )?
+        }
+        "annulus" => {
+            reject_keys(
+                "body",
+                ("shape", "annulus"),
+                given,
+                &["center", "inner", "outer", "radial", "around"],
+            )?;
+            annulus(
+                b.center.ok_or_else(|| missing("body.center", "[x, y]"))?,
+                b.inner
+                    .ok_or_else(|| missing("body.inner", "a radius > 0"))?,
+                b.outer
+                    .ok_or_else(|| missing("body.outer", "a radius > inner"))?,
+                b.radial
+                    .ok_or_else(|| missing("body.radial", "layers ≥ 1"))?,
+                b.around
+                    .ok_or_else(|| missing("body.around", "cells around ≥ 3"))?,
+            )?
+        }
+        other => {
+            return Err(InputError::new(
+                "body.shape",
+                format!("\"{other}\""),
+                "\"bar\", \"rectangle\", \"disk\" or \"annulus\"",
+            )
+            .into())
+        }
+    })
+}
+
+/// The plane body on `mesh` with the material, boundary parts, body force, contact and initial
+/// state of the scene `file`.
+pub(super) fn plane(file: &DynamicSceneFile, mesh: TriangleMesh) -> Result<BodyParts, Error> {
+    let m = &file.material;
+    let poisson = m
+        .poisson
+        .ok_or_else(|| missing("material.poisson", "a Poisson ratio in (−1, 1/2)"))?;
+    let law: Arc<dyn Hyperelastic2d> = match m.law.as_str() {
+        "linear" => Arc::new(
+            LinearElastic::from_young_poisson(m.young, poisson)
+                .map_err(|e| e.within("material"))?,
+        ),
+        "st_venant_kirchhoff" => Arc::new(
+            StVenantKirchhoff::from_young_poisson(m.young, poisson)
+                .map_err(|e| e.within("material"))?,
+        ),
+        "neo_hooke" => Arc::new(
+            NeoHooke::from_young_poisson(m.young, poisson).map_err(|e| e.within("material"))?,
+        ),
+        other => {
+            return Err(InputError::new(
+                "material.law",
+                format!("\"{other}\""),
+                "\"linear\", \"st_venant_kirchhoff\" or \"neo_hooke\"",
+            )
+            .into())
+        }
+    };
+    let dirichlet = dirichlet_parts(&file.dirichlet)?;
+    let traction = traction_parts(&file.traction)?;
+    let body_force = match &file.body_force {
+        Some(s) => pair("body_force.value", &Some(s.value.clone()))?,
+        None => [Field::Constant(0.0), Field::Constant(0.0)],
+    };
+    let nodes = mesh.nodes().to_vec();
+    let body = Arc::new(PlaneBody::new(PlaneBodyData {
+        mesh,
+        density: file.body.density,
+        law,
+        dirichlet,
+        traction,
+        body_force,
+        mass: file.body.mass,
+    })?);
+    let contact = match &file.contact {
+        None => None,
+        Some(c) => {
+            if c.end.is_some() || c.wall.is_some() {
+                return Err(InputError::new(
+                    "contact.end",
+                    "(given)",
+                    "level (and sides or where) for a plane body (end and wall are for bars)",
+                )
+                .into());
+            }
+            let boundary = if c.sides.is_empty() && c.where_.is_none() {
+                BoundarySelector::Predicate(Arc::new(|_| true))
+            } else {
+                selector("contact", &c.sides, c.where_.as_ref())?
+            };
+            Some(ContactModel::plane_half_space(
+                &body,
+                &boundary,
+                c.level
+                    .ok_or_else(|| missing("contact.level", "the foundation level y"))?,
+                treatment(c)?,
+                friction(c)?,
+            )?)
+        }
+    };
+    let u0f = pair("initial.displacement", &file.initial.displacement)?;
+    let v0f = pair("initial.velocity", &file.initial.velocity)?;
+    let interleave = |f: &[Field; 2]| -> Vec<f64> {
+        nodes
+            .iter()
+            .flat_map(|p| [f[0].eval(p[0], p[1], 0.0), f[1].eval(p[0], p[1], 0.0)])
+            .collect()
+    };
+    let (u0, v0) = (
+        body.from_nodal(&interleave(&u0f)),
+        body.from_nodal(&interleave(&v0f)),
+    );
+    Ok((SceneBody::Plane(body), contact, u0, v0))
+}

@@ -1,0 +1,102 @@
+//! The sections both moving-continuum scenes share: `[stability]` (the verdict tolerances,
+//! threads, eigenvectors, the map's kernel) and the axes of `[[sweep]]` and `[map]`.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::InputError;
+use crate::model::moving::stability::VerdictParams;
+use crate::solve::quadratic_eigen::EigenKernel;
+
+/// `[stability]`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StabilitySection {
+    pub relative_tolerance: Option<f64>,
+    pub absolute_tolerance: Option<f64>,
+    #[serde(default)]
+    pub threads: usize,
+    #[serde(default)]
+    pub eigenvectors: bool,
+    pub map_kernel: Option<EigenKernel>,
+}
+
+/// `[[sweep]]` and the axes of `[map]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AxisSection {
+    pub parameter: String,
+    pub from: f64,
+    pub to: f64,
+    pub points: usize,
+    #[serde(default = "linear")]
+    pub scale: String,
+}
+
+fn linear() -> String {
+    "linear".into()
+}
+
+/// The values of an axis: `points` values from `from` to `to`, equally or geometrically spaced.
+pub fn axis_values(field: &str, a: &AxisSection) -> Result<Vec<f64>, InputError> {
+    if !(2..=100_000).contains(&a.points) {
+        return Err(InputError::new(
+            format!("{field}.points"),
+            a.points,
+            "2 to 100000 points",
+        ));
+    }
+    for (k, v) in [("from", a.from), ("to", a.to)] {
+        if !v.is_finite() {
+            return Err(InputError::new(
+                format!("{field}.{k}"),
+                v,
+                "a finite number",
+            ));
+        }
+    }
+    if a.from == a.to {
+        return Err(InputError::new(
+            format!("{field}.to"),
+            a.to,
+            format!("a number other than from = {}", a.from),
+        ));
+    }
+    let n = a.points - 1;
+    match a.scale.as_str() {
+        "linear" => Ok((0..=n)
+            .map(|i| a.from + (a.to - a.from) * i as f64 / n as f64)
+            .collect()),
+        "log" => {
+            if !(a.from > 0.0 && a.to > 0.0) {
+                return Err(InputError::new(
+                    format!("{field}.from"),
+                    a.from,
+                    "positive from and to for scale = \"log\"",
+                ));
+            }
+            let (l0, l1) = (a.from.ln(), a.to.ln());
+            Ok((0..=n)
+                .map(|i| (l0 + (l1 - l0) * i as f64 / n as f64).exp())
+                .collect())
+        }
+        other => Err(InputError::new(
+            format!("{field}.scale"),
+            other,
+            "\"linear\" or \"log\"",
+        )),
+    }
+}
+
+/// The verdict parameters of `[stability]` (defaults where absent), with its thread count checked.
+pub(super) fn verdict_params(s: &StabilitySection) -> Result<VerdictParams, InputError> {
+    let d = VerdictParams::default();
+    let p = VerdictParams {
+        relative_tolerance: s.relative_tolerance.unwrap_or(d.relative_tolerance),
+        absolute_tolerance: s.absolute_tolerance.unwrap_or(d.absolute_tolerance),
+    };
+    p.validate()?;
+    if s.threads > 1024 {
+        return Err(InputError::new("stability.threads", s.threads, "0 to 1024"));
+    }
+    Ok(p)
+}
