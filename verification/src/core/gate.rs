@@ -1,11 +1,21 @@
 //! Gates: the verdicts that make `verify` fail.
 //!
-//! A rate gate is three numbers and a consistency check (scikit-fem's convention): the fitted rate
-//! is within `tolerance` of the expected rate, the 95% confidence interval is narrower than
-//! `ci_width`, the error on the finest level is below `ceiling`, and the pairwise rates of the finest
-//! levels agree with the fit (the levels are in the asymptotic range). [`RateCriteria`] holds
-//! those numbers once for every family; a family's `[[gate]]` adds only the keys that select its
-//! data ([`RateGate`]). A model gate ([`ModelCriteria`]) fits E(h, k) ≈ C_h h^p ⊕ C_k k^q.
+//! A rate gate (scikit-fem's convention, made strict): on the levels chosen by the level rule
+//! ([`crate::stats::levels`]: pre-asymptotic levels and floors left out automatically, the same
+//! way everywhere),
+//!
+//! 1. the fitted rate is within `tolerance` of the expected rate;
+//! 2. its 95% confidence interval is narrower than `ci_width`;
+//! 3. the two finest pairwise rates are each within `tolerance` of the *expected* rate (the levels
+//!    are in the asymptotic range of the expected behaviour, not merely self-consistent);
+//! 4. the error on the finest level is at most `ceiling_factor` (≤ [`MAX_CEILING_FACTOR`]) times
+//!    the error model's prediction there: E ≈ C p^expected with C fitted on the other levels used
+//!    (a finest level that leaves the model — a floor reached unnoticed, a loss of convergence —
+//!    fails, whatever its rate).
+//!
+//! [`RateCriteria`] holds those numbers once for every family; a family's `[[gate]]` adds only
+//! the keys that select its data ([`RateGate`]). A model gate ([`ModelCriteria`]) fits
+//! E(h, k) ≈ C_h h^p ⊕ C_k k^q. Every printed limit is the exact number compared.
 
 use serde::Serialize;
 
@@ -16,10 +26,17 @@ use serde::Deserialize;
 
 use crate::core::format::{invalid, positive, CaseError};
 use crate::stats::error_model::{fit_error_model_with, Combination, ErrorModelFit};
-use crate::stats::rate_fit::{fit_rate, RateFit};
+use crate::stats::levels::{asymptotic_window, LevelWindow, MIN_LEVELS};
+use crate::stats::rate_fit::{fit_rate, pairwise_rates, RateFit};
 
 /// The confidence level of every interval in the reports.
 pub const CONFIDENCE: f64 = 0.95;
+
+/// The largest factor a ceiling may put above the error model's prediction.
+pub const MAX_CEILING_FACTOR: f64 = 3.0;
+
+/// The ceiling factor of a rate gate that does not state one.
+pub const DEFAULT_CEILING_FACTOR: f64 = 2.0;
 
 /// One checked condition.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -28,7 +45,8 @@ pub struct Check {
     pub name: String,
     /// The observed value.
     pub observed: f64,
-    /// The condition it must meet, as text (`<= 1e-2`, `in [0.9, 1.1]`).
+    /// The condition it must meet, as text, with the exact numbers compared (`<= 0.01`,
+    /// `in [0.95, 1.05]`).
     pub limit: String,
     pub passed: bool,
 }
@@ -39,18 +57,29 @@ impl Check {
         Self {
             name: name.to_string(),
             observed,
-            limit: format!("<= {limit:.3e}"),
+            limit: format!("<= {limit:e}"),
             passed: observed <= limit,
         }
     }
 
-    /// |observed − target| ≤ tol.
-    pub fn within(name: &str, observed: f64, target: f64, tol: f64) -> Self {
+    /// observed ≥ limit.
+    pub fn at_least(name: &str, observed: f64, limit: f64) -> Self {
         Self {
             name: name.to_string(),
             observed,
-            limit: format!("in [{:.4}, {:.4}]", target - tol, target + tol),
-            passed: (observed - target).abs() <= tol,
+            limit: format!(">= {limit:e}"),
+            passed: observed >= limit,
+        }
+    }
+
+    /// target − tol ≤ observed ≤ target + tol (the bounds as computed, printed exactly).
+    pub fn within(name: &str, observed: f64, target: f64, tol: f64) -> Self {
+        let (low, high) = (target - tol, target + tol);
+        Self {
+            name: name.to_string(),
+            observed,
+            limit: format!("in [{low}, {high}]"),
+            passed: low <= observed && observed <= high,
         }
     }
 
@@ -78,6 +107,9 @@ pub struct GateVerdict {
     pub note: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rate_fit: Option<RateFit>,
+    /// The levels of a rate gate and which of them the level rule used.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub levels: Option<LevelWindow>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub model_fit: Option<ErrorModelFit>,
 }
@@ -92,6 +124,7 @@ impl GateVerdict {
             checks,
             note: note.to_string(),
             rate_fit: None,
+            levels: None,
             model_fit: None,
         }
     }
@@ -102,117 +135,148 @@ impl GateVerdict {
 #[serde(deny_unknown_fields)]
 pub struct RateCriteria {
     pub expected_rate: f64,
-    /// |fitted − expected| ≤ tolerance.
+    /// |fitted − expected| ≤ tolerance, and the same for the two finest pairwise rates; also the
+    /// drift threshold of the level rule.
     pub tolerance: f64,
-    /// The least-squares fit uses this many of the finest levels (≥ 2).
-    pub finest_levels: usize,
     /// The 95% confidence interval must be narrower.
     pub ci_width: f64,
-    /// The error on the finest level must be below.
-    pub ceiling: f64,
-    /// Pairwise rates of the finest pairs must lie within this of the fit (default: `tolerance`).
-    pub asymptotic_tolerance: Option<f64>,
-    /// For rates with an explained scatter: instead of |fit − expected| ≤ tolerance, require the
-    /// expected rate to lie inside the 95% confidence interval (the data do not reject it), with
-    /// the interval no wider than `ci_width`.
-    #[serde(default)]
-    pub expected_in_ci: bool,
+    /// The finest error must be at most this times the error model's prediction
+    /// (1 < factor ≤ [`MAX_CEILING_FACTOR`]; default [`DEFAULT_CEILING_FACTOR`]).
+    pub ceiling_factor: Option<f64>,
     /// Why the gate expects what it expects.
     #[serde(default)]
     pub note: String,
 }
 
 /// The keys of [`RateCriteria`] in a gate table.
-const CRITERIA_KEYS: [&str; 8] = [
+const CRITERIA_KEYS: [&str; 5] = [
     "expected_rate",
     "tolerance",
-    "finest_levels",
     "ci_width",
-    "ceiling",
-    "asymptotic_tolerance",
-    "expected_in_ci",
+    "ceiling_factor",
     "note",
 ];
 
 impl RateCriteria {
     /// Checks the numbers; `field` names the gate in errors (`gate[2]`).
     pub fn check(&self, path: &Path, field: &str) -> Result<(), CaseError> {
-        if self.finest_levels < 2 {
-            return Err(invalid(
-                path,
-                &format!("{field}.finest_levels"),
-                self.finest_levels,
-                ">= 2",
-            ));
-        }
-        for (name, v) in [
-            ("tolerance", self.tolerance),
-            ("ci_width", self.ci_width),
-            ("ceiling", self.ceiling),
-        ] {
+        for (name, v) in [("tolerance", self.tolerance), ("ci_width", self.ci_width)] {
             positive(path, &format!("{field}.{name}"), v)?;
+        }
+        if let Some(f) = self.ceiling_factor {
+            if !(f > 1.0 && f <= MAX_CEILING_FACTOR) {
+                return Err(invalid(
+                    path,
+                    &format!("{field}.ceiling_factor"),
+                    f,
+                    &format!("in (1, {MAX_CEILING_FACTOR}]"),
+                ));
+            }
         }
         Ok(())
     }
 
-    /// Evaluates the gate on the (parameter, error) pairs of one series.
+    /// The ceiling factor in force.
+    pub fn ceiling_factor(&self) -> f64 {
+        self.ceiling_factor.unwrap_or(DEFAULT_CEILING_FACTOR)
+    }
+
+    /// Evaluates the gate on the (parameter, error) pairs of one series, with no known floor.
     pub fn evaluate(&self, name: String, param: &[f64], error: &[f64]) -> GateVerdict {
-        let fit = match fit_rate(param, error, self.finest_levels, CONFIDENCE) {
-            Ok(fit) => fit,
-            Err(e) => {
-                return GateVerdict::from_checks(
-                    name,
-                    "rate",
-                    vec![Check::holds(
-                        &format!("rate fit ({e})"),
-                        false,
-                        "a valid fit",
-                    )],
-                    &self.note,
-                )
-            }
+        self.evaluate_with_floor(name, param, error, 0.0)
+    }
+
+    /// Evaluates the gate on one series whose errors cannot fall below `floor` (round-off, the
+    /// solver's tolerance, or the other variable's error; 0 when none is known): the level rule
+    /// leaves out the levels at the floor and the pre-asymptotic ones.
+    pub fn evaluate_with_floor(
+        &self,
+        name: String,
+        param: &[f64],
+        error: &[f64],
+        floor: f64,
+    ) -> GateVerdict {
+        let fail = |what: String| {
+            GateVerdict::from_checks(
+                name.clone(),
+                "rate",
+                vec![Check::holds(&what, false, "a valid fit")],
+                &self.note,
+            )
         };
-        let rate_check = if self.expected_in_ci {
-            Check {
-                name: format!(
-                    "expected rate {} inside the 95% CI of the fitted rate",
-                    self.expected_rate
-                ),
-                observed: fit.rate,
-                limit: format!(
-                    "CI [{:.4}, {:.4}] contains {}",
-                    fit.ci_low, fit.ci_high, self.expected_rate
-                ),
-                passed: fit.ci_low <= self.expected_rate && self.expected_rate <= fit.ci_high,
-            }
-        } else {
-            Check::within("fitted rate", fit.rate, self.expected_rate, self.tolerance)
-        };
-        let mut checks = vec![
-            rate_check,
-            Check::at_most("95% CI width", fit.ci_high - fit.ci_low, self.ci_width),
-        ];
-        let finest = param
-            .iter()
-            .zip(error)
-            .min_by(|a, b| a.0.total_cmp(b.0))
-            .map(|(_, e)| *e)
-            .unwrap_or(f64::NAN);
-        checks.push(Check::at_most("finest-level error", finest, self.ceiling));
-        // Asymptotic range: the pairwise rates among the fitted (finest) levels, the last two pairs.
-        let asym_tol = self.asymptotic_tolerance.unwrap_or(self.tolerance);
-        let fitted_pairs = self.finest_levels.saturating_sub(1).min(fit.pairwise.len());
-        let pairs = &fit.pairwise[fit.pairwise.len() - fitted_pairs..];
-        for p in pairs.iter().rev().take(2) {
-            checks.push(Check::within(
-                &format!("pairwise rate {:.3e} -> {:.3e}", p.from, p.to),
-                p.rate,
-                fit.rate,
-                asym_tol,
+        if param.len() != error.len() {
+            return fail(format!(
+                "{} parameters for {} errors",
+                param.len(),
+                error.len()
             ));
         }
+        if let Some(i) = (0..param.len()).find(|&i| {
+            !(param[i].is_finite() && param[i] > 0.0 && error[i].is_finite() && error[i] > 0.0)
+        }) {
+            return fail(format!(
+                "level {i}: parameter {} and error {} must be finite and positive",
+                param[i], error[i]
+            ));
+        }
+        let window = asymptotic_window(param, error, self.tolerance, floor);
+        let (p, e) = window.used();
+        if p.len() < MIN_LEVELS {
+            let mut v = fail(format!(
+                "at least {MIN_LEVELS} levels outside the floor ({})",
+                window.describe()
+            ));
+            v.levels = Some(window);
+            return v;
+        }
+        let mut fit = match fit_rate(&p, &e, p.len(), CONFIDENCE) {
+            Ok(fit) => fit,
+            Err(err) => return fail(format!("rate fit ({err})")),
+        };
+        fit.pairwise = pairwise_rates(param, error);
+        let expected = self.expected_rate;
+        let mut checks = vec![
+            Check::within(
+                &format!("fitted rate ({})", window.describe()),
+                fit.rate,
+                expected,
+                self.tolerance,
+            ),
+            Check::at_most("95% CI width", fit.ci_high - fit.ci_low, self.ci_width),
+        ];
+        // the finest two pairwise rates of the used levels, against the expected rate
+        let n = p.len();
+        for i in (n - 2..n).rev() {
+            let j = i - 1;
+            let rate = (e[j].ln() - e[i].ln()) / (p[j].ln() - p[i].ln());
+            checks.push(Check::within(
+                &format!(
+                    "pairwise rate {:e} -> {:e} vs the expected rate",
+                    p[j], p[i]
+                ),
+                rate,
+                expected,
+                self.tolerance,
+            ));
+        }
+        // ceiling: the error model E = C p^expected on the other used levels predicts the finest
+        let log_c = (0..n - 1)
+            .map(|i| e[i].ln() - expected * p[i].ln())
+            .sum::<f64>()
+            / (n - 1) as f64;
+        let predicted = (log_c + expected * p[n - 1].ln()).exp();
+        let factor = self.ceiling_factor();
+        checks.push(Check::at_most(
+            &format!(
+                "finest-level error vs {factor} × the prediction {predicted:e} of E = C·p^{expected} \
+                 from the coarser levels"
+            ),
+            e[n - 1],
+            factor * predicted,
+        ));
         let mut v = GateVerdict::from_checks(name, "rate", checks, &self.note);
         v.rate_fit = Some(fit);
+        v.levels = Some(window);
         v
     }
 }
@@ -290,20 +354,18 @@ impl ModelCriteria {
 
 #[cfg(test)]
 mod tests {
-    //! Gate logic on synthetic data with a known rate: the right expectation passes, a deliberately
-    //! wrong expected rate fails, a ceiling below the finest error fails, and a pre-asymptotic
-    //! sweep fails the pairwise check.
+    //! Gate logic on synthetic data with a known rate: the right expectation passes; a wrong
+    //! expected rate fails; a finest level above the model's prediction fails; a scatter that the
+    //! old "expected inside the CI" mode let through fails; pairwise rates are held to the
+    //! expected rate, not to the fit; printed limits are the compared numbers.
     use super::*;
 
     fn spec(expected: f64) -> RateCriteria {
         RateCriteria {
             expected_rate: expected,
             tolerance: 0.1,
-            finest_levels: 4,
             ci_width: 0.1,
-            ceiling: 1e-2,
-            asymptotic_tolerance: None,
-            expected_in_ci: false,
+            ceiling_factor: None,
             note: String::new(),
         }
     }
@@ -319,6 +381,7 @@ mod tests {
         let (h, e) = data();
         let v = spec(1.0).evaluate("g".into(), &h, &e);
         assert!(v.passed, "{v:?}");
+        assert_eq!(v.levels.as_ref().map(|w| w.count()), Some(5));
     }
 
     #[test]
@@ -330,42 +393,94 @@ mod tests {
     }
 
     #[test]
-    fn ceiling_below_finest_error_fails() {
-        let (h, e) = data();
+    fn a_finest_level_above_the_model_prediction_fails_the_ceiling() {
+        // rate 1 on the coarse levels, then the finest level stalls at 2.5× the prediction
+        let (h, mut e) = data();
+        e[4] *= 2.5;
         let mut s = spec(1.0);
-        s.ceiling = 1e-4;
+        s.tolerance = 2.0;
+        s.ci_width = 10.0;
         let v = s.evaluate("g".into(), &h, &e);
-        assert!(!v.passed);
+        let ceiling = v.checks.last().unwrap();
+        assert!(ceiling.name.contains("prediction"), "{v:?}");
+        assert!(!ceiling.passed, "{v:?}");
+        s.ceiling_factor = Some(3.0);
+        assert!(s.evaluate("g".into(), &h, &e).checks.last().unwrap().passed);
     }
 
     #[test]
-    fn ci_containment_mode_accepts_scatter_around_the_expected_rate_and_rejects_a_wrong_one() {
-        // E = h² with ±10% deterministic scatter
+    fn scattered_pairwise_rates_fail_even_when_the_fit_is_right() {
+        // E = h² with ±10% deterministic scatter: the old CI-containment mode passed this
         let h: Vec<f64> = (0..6).map(|i| 0.1 / 2f64.powi(i)).collect();
         let wiggle = [1.0, 1.1, 0.9, 1.08, 0.93, 1.02];
         let e: Vec<f64> = h.iter().zip(wiggle).map(|(h, w)| h * h * w).collect();
         let mut s = spec(2.0);
-        s.expected_in_ci = true;
-        s.finest_levels = 6;
         s.ci_width = 0.5;
-        s.ceiling = 1.0;
-        s.asymptotic_tolerance = Some(0.5);
-        assert!(s.evaluate("g".into(), &h, &e).passed);
-        s.expected_rate = 1.0;
-        assert!(!s.evaluate("g".into(), &h, &e).passed);
+        let v = s.evaluate("g".into(), &h, &e);
+        assert!(!v.passed, "{v:?}");
+        assert!(v
+            .checks
+            .iter()
+            .any(|c| c.name.contains("pairwise") && !c.passed));
     }
 
     #[test]
-    fn pre_asymptotic_finest_pair_fails_the_pairwise_check() {
-        let (h, mut e) = data();
-        // The finest level suddenly converges faster: the pairwise rate there is ~2, not 1.
-        e[4] = e[3] / 4.0;
-        let mut s = spec(1.0);
-        s.tolerance = 0.5;
-        s.ci_width = 10.0;
-        s.asymptotic_tolerance = Some(0.2);
+    fn pairwise_rates_are_compared_with_the_expected_rate_not_the_fit() {
+        // a clean rate 1.5 sweep: self-consistent (pairwise = fit), but not the expected 2
+        let h: Vec<f64> = (0..6).map(|i| 0.1 / 2f64.powi(i)).collect();
+        let e: Vec<f64> = h.iter().map(|h| h.powf(1.5)).collect();
+        let mut s = spec(2.0);
+        s.tolerance = 0.6; // the fit alone would pass
         let v = s.evaluate("g".into(), &h, &e);
-        assert!(!v.passed, "{v:?}");
+        assert!(v.checks[0].passed);
+        s.tolerance = 0.4;
+        let v = s.evaluate("g".into(), &h, &e);
+        assert!(v
+            .checks
+            .iter()
+            .filter(|c| c.name.contains("pairwise"))
+            .all(|c| !c.passed));
+    }
+
+    #[test]
+    fn pre_asymptotic_coarse_levels_are_left_out_automatically() {
+        let h: Vec<f64> = (0..7).map(|i| 0.5 / 2f64.powi(i)).collect();
+        let e: Vec<f64> = h.iter().map(|h| h * h + 3.0 * h.powi(4)).collect();
+        let mut s = spec(2.0);
+        s.tolerance = 0.05;
+        let v = s.evaluate("g".into(), &h, &e);
+        assert!(v.passed, "{v:?}");
+        assert!(v.levels.unwrap().describe().contains("pre-asymptotic"));
+    }
+
+    #[test]
+    fn a_floor_leaves_the_fine_levels_out_and_too_few_levels_fail() {
+        let h: Vec<f64> = (0..6).map(|i| 0.1 / 2f64.powi(i)).collect();
+        let floor = 1e-4;
+        let e: Vec<f64> = h.iter().map(|h| h * h + floor).collect();
+        let v = spec(2.0).evaluate_with_floor("g".into(), &h, &e, floor);
+        assert!(!v.passed, "only the first levels are above 10 F: {v:?}");
+        assert!(v.checks[0].name.contains("at least 3 levels"), "{v:?}");
+    }
+
+    #[test]
+    fn printed_limits_are_the_numbers_compared() {
+        let c = Check::at_most("x", 5.000000000000001e-4, 5e-4);
+        assert!(!c.passed);
+        assert_eq!(c.limit, "<= 5e-4");
+        let c = Check::within("x", 1.0, 2.0, 0.1);
+        assert_eq!(c.limit, "in [1.9, 2.1]");
+    }
+
+    #[test]
+    fn a_ceiling_factor_above_three_is_a_typed_error() {
+        let mut s = spec(1.0);
+        s.ceiling_factor = Some(4.0);
+        let e = s
+            .check(Path::new("c.toml"), "gate[0]")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("gate[0].ceiling_factor"), "{e}");
     }
 
     #[derive(Debug, Deserialize)]
@@ -376,15 +491,17 @@ mod tests {
 
     #[test]
     fn a_gate_table_splits_into_selection_and_criteria_and_denies_unknown_keys() {
-        let text = "series = \"sine\"\nexpected_rate = 2.0\ntolerance = 0.1\nfinest_levels = 3\n\
-                    ci_width = 0.2\nceiling = 1e-3\n";
+        let text = "series = \"sine\"\nexpected_rate = 2.0\ntolerance = 0.1\n\
+                    ci_width = 0.2\n";
         let g: RateGate<Select> = toml::from_str(text).expect("parses");
         assert_eq!(g.select.series, "sine");
-        assert_eq!(g.criteria.finest_levels, 3);
-        assert!(!g.criteria.expected_in_ci);
+        assert_eq!(g.criteria.ceiling_factor(), DEFAULT_CEILING_FACTOR);
         let e = toml::from_str::<RateGate<Select>>(&format!("{text}stray = 1\n"))
             .expect_err("unknown key");
         assert!(e.to_string().contains("stray"), "{e}");
+        let e = toml::from_str::<RateGate<Select>>(&format!("{text}finest_levels = 3\n"))
+            .expect_err("levels are chosen by the rule, not by hand");
+        assert!(e.to_string().contains("finest_levels"), "{e}");
         let e = toml::from_str::<RateGate<Select>>("series = \"s\"\nexpected_rate = 2.0\n")
             .expect_err("missing criteria");
         assert!(e.to_string().contains("tolerance"), "{e}");

@@ -29,6 +29,7 @@
 
 pub mod error_model;
 pub mod lcg;
+pub mod levels;
 pub mod rate_fit;
 
 use statrs::distribution::{ContinuousCDF, StudentsT, StudentsTError};

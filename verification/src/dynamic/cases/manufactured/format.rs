@@ -1,6 +1,7 @@
 //! The case format of `dynamic_manufactured` and its checks: the law, the mass matrix, the
 //! time and space studies (scheme × contact force), and the rate gates on their series.
 
+use crate::stats::levels::MIN_LEVELS;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
@@ -259,13 +260,12 @@ impl ManufacturedCase {
                 s.divisions.len()
             }
         };
-        let finest = gate.criteria.finest_levels;
-        if finest > levels {
+        if levels < MIN_LEVELS {
             return Err(invalid(
                 p,
-                &format!("{field}.finest_levels"),
-                finest,
-                &format!("2 … {levels} (the levels of the study)"),
+                &format!("{field}.study"),
+                levels,
+                &format!("a study of at least {MIN_LEVELS} levels (the rate fit needs them)"),
             ));
         }
         Ok(())
