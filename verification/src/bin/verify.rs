@@ -7,6 +7,8 @@
 //! - `verify --list`                the catalogue
 //! - `verify scene FILE.toml --out DIR`   run a user's scene
 //! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
+//! - `verify --quick --out DIR --check reports`   run, then fail when a deterministic number
+//!   differs from the committed report of the same case (CI)
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -16,7 +18,7 @@ use clap::{Parser, Subcommand};
 
 use contactlab_verify::core::case::{Case, Tier};
 use contactlab_verify::core::context::RunContext;
-use contactlab_verify::core::report::compare::compare;
+use contactlab_verify::core::report::compare::{check, compare};
 use contactlab_verify::core::report::markdown;
 use contactlab_verify::core::report::metadata::Metadata;
 use contactlab_verify::registry;
@@ -50,6 +52,10 @@ struct Cli {
     /// No progress bars.
     #[arg(long)]
     no_progress: bool,
+    /// After the run, compare every case's deterministic numbers with its committed report in
+    /// this directory (`reports`); exit 1 when any differs.
+    #[arg(long, value_name = "DIR")]
+    check: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -209,16 +215,8 @@ fn main() -> ExitCode {
                 );
             }
         }
-        let json = match serde_json::to_string_pretty(&report) {
-            Ok(j) => j,
-            Err(e) => {
-                eprintln!("error: serializing {}: {e}", report.id);
-                return ExitCode::from(2);
-            }
-        };
-        let path = out.join(format!("{}.json", report.id));
-        if let Err(e) = std::fs::write(&path, json) {
-            eprintln!("error: writing {}: {e}", path.display());
+        if let Err(e) = report.write(&out) {
+            eprintln!("error: writing the report: {e}");
             return ExitCode::from(2);
         }
         reports.push(report);
@@ -238,7 +236,33 @@ fn main() -> ExitCode {
         total,
         md_path.display()
     );
-    if failed > 0 {
+    let mut drifted = false;
+    if let Some(reference) = &cli.check {
+        let ids: Vec<String> = reports.iter().map(|r| r.id.clone()).collect();
+        match check(reference, &out, &ids) {
+            Ok(c) => {
+                print!("{}", c.render());
+                if c.same() {
+                    println!(
+                        "check: the deterministic numbers equal {}",
+                        reference.display()
+                    );
+                } else {
+                    println!(
+                        "check: the deterministic numbers differ from {} (regenerate the reports \
+                         at the commit that changes them)",
+                        reference.display()
+                    );
+                    drifted = true;
+                }
+            }
+            Err(e) => {
+                eprintln!("error: --check {}: {e}", reference.display());
+                return ExitCode::from(2);
+            }
+        }
+    }
+    if failed > 0 || drifted {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS

@@ -112,6 +112,11 @@ pub struct GateVerdict {
     pub levels: Option<LevelWindow>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub model_fit: Option<ErrorModelFit>,
+    /// The checks compare measured times or ratios of them: the verdict can differ from run to
+    /// run, so the gate is kept apart from the deterministic report (`core::report::split`).
+    /// Only machine-independent figures may be gated so (ratios, slopes), never absolute times.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub timing: bool,
 }
 
 impl GateVerdict {
@@ -126,7 +131,16 @@ impl GateVerdict {
             rate_fit: None,
             levels: None,
             model_fit: None,
+            timing: false,
         }
+    }
+
+    /// A verdict on measured times (ratios or slopes of them, never absolute times): see
+    /// [`GateVerdict::timing`].
+    pub fn from_timing_checks(name: String, checks: Vec<Check>, note: &str) -> Self {
+        let mut v = Self::from_checks(name, "performance", checks, note);
+        v.timing = true;
+        v
     }
 }
 

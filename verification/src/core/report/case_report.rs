@@ -1,10 +1,13 @@
 //! The per-case report, serialized as `reports/<case id>.json`.
 
+use std::path::Path;
+
 use serde::Serialize;
 
 use crate::core::case::{CaseHeader, Tier};
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::metadata::Metadata;
+use crate::core::report::split::split;
 use crate::core::sweep::SweepReport;
 
 /// A plot written for a case.
@@ -62,7 +65,6 @@ pub struct PerformancePoint {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PerformanceReport {
     pub points: Vec<PerformancePoint>,
-    pub budget_seconds: f64,
 }
 
 /// A table of a case (rendered in the report; its rows are also in the JSON).
@@ -135,6 +137,22 @@ impl CaseReport {
             metadata,
             sections: Vec::new(),
         }
+    }
+
+    /// Writes `<out>/<id>.json` (the deterministic numbers) and `<out>/<id>.timings.json`
+    /// (timings, timing gates and the run's metadata), split by [`split`].
+    pub fn write(&self, out: &Path) -> Result<(), String> {
+        let value = serde_json::to_value(self).map_err(|e| format!("{}: {e}", self.id))?;
+        let parts = split(&value);
+        for (name, v) in [
+            (format!("{}.json", self.id), &parts.deterministic),
+            (format!("{}.timings.json", self.id), &parts.varying),
+        ] {
+            let path = out.join(name);
+            let text = serde_json::to_string_pretty(v).map_err(|e| format!("{}: {e}", self.id))?;
+            std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        }
+        Ok(())
     }
 
     /// Sets `passed` from the gates and the failure.

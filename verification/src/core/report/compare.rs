@@ -1,14 +1,13 @@
 //! `verify compare BEFORE AFTER [--noise BEFORE2]`: are two report directories the same numbers?
 //!
-//! Every JSON file under BEFORE (`<case>.json`, `<case>/data.json`) is compared leaf by leaf with
-//! the same file under AFTER. Numbers must be bit-identical; a file, a leaf or an array entry
-//! present on one side only is a structural difference. Left out of the comparison, and counted:
-//!
-//! - timings, which no two runs share: the `metadata` object, every key that names a time
-//!   (`wall_seconds`, `cpu_seconds`, `seconds`, `solver_seconds`, `ns_per_dof_step`, …), and every
-//!   table column whose header gives a unit of time (`loop (s)`, `per step (ms)`, `µs/step`);
-//! - with `--noise BEFORE2` (further runs of the same code; repeatable), every leaf that differs
-//!   between BEFORE and one of them — the timings written into check values and derived columns.
+//! Every JSON file under BEFORE (`<case>.json`, `<case>/data.json`; not the `*.timings.json`) is
+//! compared leaf by leaf with the same file under AFTER, after the split of
+//! [`crate::core::report::split`]: only the deterministic part is compared. Numbers must be
+//! bit-identical; a file, a leaf or an array entry present on one side only is a structural
+//! difference. Left out, and counted: the varying leaves (timings, timing gates, metadata), and
+//! with `--noise BEFORE2` (further runs of the same code; repeatable) every leaf that differs
+//! between BEFORE and one of them (there should be none: a noise leaf is a timing the split does
+//! not know).
 //!
 //! Strings are compared too — tables hold their numbers as formatted text — and must be equal,
 //! except the prose of a case (`explanation`, `note`, and the case `kind`, a label): a reworded
@@ -18,6 +17,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use serde_json::Value;
+
+use crate::core::report::split::split;
 
 /// Where two report trees differ.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -89,15 +90,6 @@ impl Comparison {
     }
 }
 
-/// Keys whose values are timings.
-fn is_timing_key(key: &str) -> bool {
-    key == "metadata"
-        || key == "seconds"
-        || key.ends_with("_seconds")
-        || key.starts_with("seconds_")
-        || key.starts_with("ns_per_")
-}
-
 /// Whether a leaf is prose (its path ends in a prose key).
 fn is_prose(path: &str) -> bool {
     ["/explanation", "/note", "/kind"]
@@ -105,49 +97,12 @@ fn is_prose(path: &str) -> bool {
         .any(|k| path.ends_with(k))
 }
 
-/// Whether a table column header gives a unit of time.
-fn is_timing_header(header: &str) -> bool {
-    ["(s)", "(ms)", "µs", "s/step", "seconds", "(ms", "(s,"]
-        .iter()
-        .any(|u| header.contains(u))
-}
-
-/// The leaves of a JSON value by path (`/gates[3]/checks[0]/observed`), timing keys and timing
-/// table columns left out (and counted).
-fn leaves(v: &Value, path: &str, out: &mut BTreeMap<String, Value>, timing: &mut usize) {
+/// The leaves of a JSON value by path (`/gates[3]/checks[0]/observed`).
+fn leaves(v: &Value, path: &str, out: &mut BTreeMap<String, Value>) {
     match v {
-        Value::Object(map) if map.contains_key("header") && map.contains_key("rows") => {
-            let timing_columns: Vec<bool> = map["header"]
-                .as_array()
-                .map(|h| {
-                    h.iter()
-                        .map(|c| c.as_str().is_some_and(is_timing_header))
-                        .collect()
-                })
-                .unwrap_or_default();
-            for (k, x) in map {
-                if k != "rows" {
-                    leaves(x, &format!("{path}/{k}"), out, timing);
-                    continue;
-                }
-                for (r, row) in x.as_array().into_iter().flatten().enumerate() {
-                    for (c, cell) in row.as_array().into_iter().flatten().enumerate() {
-                        if timing_columns.get(c).copied().unwrap_or(false) {
-                            *timing += 1;
-                        } else {
-                            leaves(cell, &format!("{path}/rows[{r}][{c}]"), out, timing);
-                        }
-                    }
-                }
-            }
-        }
         Value::Object(map) => {
             for (k, x) in map {
-                if is_timing_key(k) {
-                    *timing += count_leaves(x);
-                } else {
-                    leaves(x, &format!("{path}/{k}"), out, timing);
-                }
+                leaves(x, &format!("{path}/{k}"), out);
             }
         }
         Value::Array(items) => {
@@ -155,7 +110,7 @@ fn leaves(v: &Value, path: &str, out: &mut BTreeMap<String, Value>, timing: &mut
                 out.insert(format!("{path}[]"), Value::Null);
             }
             for (i, x) in items.iter().enumerate() {
-                leaves(x, &format!("{path}[{i}]"), out, timing);
+                leaves(x, &format!("{path}[{i}]"), out);
             }
         }
         other => {
@@ -182,7 +137,9 @@ fn json_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
             let p = e.map_err(|e| format!("{}: {e}", d.display()))?.path();
             if p.is_dir() {
                 stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "json") {
+            } else if p.extension().is_some_and(|x| x == "json")
+                && !p.to_string_lossy().ends_with(".timings.json")
+            {
                 if let Ok(rel) = p.strip_prefix(dir) {
                     out.push(rel.to_path_buf());
                 }
@@ -193,11 +150,15 @@ fn json_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
     Ok(out)
 }
 
+/// The deterministic leaves of a JSON file ([`split`]: a report written before the split is
+/// split the same way); `timing` counts the varying leaves left out.
 fn read_leaves(path: &Path, timing: &mut usize) -> Result<BTreeMap<String, Value>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let v: Value = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let parts = split(&v);
+    *timing += count_leaves(&parts.varying["leaves"]) + count_leaves(&parts.varying["gates"]);
     let mut out = BTreeMap::new();
-    leaves(&v, "", &mut out, timing);
+    leaves(&parts.deterministic, "", &mut out);
     Ok(out)
 }
 
@@ -225,62 +186,93 @@ pub fn compare(before: &Path, after: &Path, noise: &[PathBuf]) -> Result<Compari
                 .push(format!("{}: only in {}", f.display(), before.display()));
             continue;
         }
-        c.files += 1;
-        let mut timing = 0;
-        let a = read_leaves(&before.join(f), &mut timing)?;
-        let b = read_leaves(&after.join(f), &mut 0)?;
-        c.timing_leaves += timing;
-        let mut runs = Vec::new();
-        for dir in noise.iter().filter(|d| d.join(f).exists()) {
-            runs.push(read_leaves(&dir.join(f), &mut 0)?);
+        compare_file(&mut c, before, after, f, noise)?;
+    }
+    Ok(c)
+}
+
+/// `verify --check REFERENCE`: compares the case reports `<id>.json` of a fresh run (in `fresh`)
+/// with the committed ones in `reference`, for the cases of the run only.
+pub fn check(reference: &Path, fresh: &Path, ids: &[String]) -> Result<Comparison, String> {
+    let mut c = Comparison::default();
+    for id in ids {
+        let f = PathBuf::from(format!("{id}.json"));
+        if !reference.join(&f).exists() {
+            c.structure.push(format!(
+                "{}: not in {} (a new case: commit its report)",
+                f.display(),
+                reference.display()
+            ));
+            continue;
         }
-        for (k, va) in &a {
-            let at = format!("{}: {k}", f.display());
-            if runs.iter().any(|n| n.get(k) != Some(va)) {
-                c.noise_leaves += 1;
-                continue;
-            }
-            let Some(vb) = b.get(k) else {
-                c.structure
-                    .push(format!("{at}: only in {}", before.display()));
-                continue;
-            };
-            let numeric = va.is_number() || vb.is_number();
-            let equal = match (va, vb) {
-                (Value::Number(x), Value::Number(y)) => match (x.as_f64(), y.as_f64()) {
-                    (Some(x), Some(y)) => x.to_bits() == y.to_bits(),
-                    _ => x == y,
-                },
-                _ => va == vb,
-            };
-            match (equal, numeric) {
-                (true, true) => c.numbers_equal += 1,
-                (true, false) => c.text_equal += 1,
-                (false, true) => c.numbers_changed.push(Change {
+        compare_file(&mut c, reference, fresh, &f, &[])?;
+    }
+    Ok(c)
+}
+
+/// Compares one file `f` of two trees into `c`.
+fn compare_file(
+    c: &mut Comparison,
+    before: &Path,
+    after: &Path,
+    f: &Path,
+    noise: &[PathBuf],
+) -> Result<(), String> {
+    c.files += 1;
+    let mut timing = 0;
+    let a = read_leaves(&before.join(f), &mut timing)?;
+    let b = read_leaves(&after.join(f), &mut 0)?;
+    c.timing_leaves += timing;
+    let mut runs = Vec::new();
+    for dir in noise.iter().filter(|d| d.join(f).exists()) {
+        runs.push(read_leaves(&dir.join(f), &mut 0)?);
+    }
+    for (k, va) in &a {
+        let at = format!("{}: {k}", f.display());
+        if runs.iter().any(|n| n.get(k) != Some(va)) {
+            c.noise_leaves += 1;
+            continue;
+        }
+        let Some(vb) = b.get(k) else {
+            c.structure
+                .push(format!("{at}: only in {}", before.display()));
+            continue;
+        };
+        let numeric = va.is_number() || vb.is_number();
+        let equal = match (va, vb) {
+            (Value::Number(x), Value::Number(y)) => match (x.as_f64(), y.as_f64()) {
+                (Some(x), Some(y)) => x.to_bits() == y.to_bits(),
+                _ => x == y,
+            },
+            _ => va == vb,
+        };
+        match (equal, numeric) {
+            (true, true) => c.numbers_equal += 1,
+            (true, false) => c.text_equal += 1,
+            (false, true) => c.numbers_changed.push(Change {
+                at,
+                before: show(va),
+                after: show(vb),
+            }),
+            (false, false) => {
+                let change = Change {
                     at,
                     before: show(va),
                     after: show(vb),
-                }),
-                (false, false) => {
-                    let change = Change {
-                        at,
-                        before: show(va),
-                        after: show(vb),
-                    };
-                    if is_prose(k) {
-                        c.prose_changed.push(change);
-                    } else {
-                        c.text_changed.push(change);
-                    }
+                };
+                if is_prose(k) {
+                    c.prose_changed.push(change);
+                } else {
+                    c.text_changed.push(change);
                 }
             }
         }
-        for k in b.keys().filter(|k| !a.contains_key(*k)) {
-            c.structure
-                .push(format!("{}: {k}: only in {}", f.display(), after.display()));
-        }
     }
-    Ok(c)
+    for k in b.keys().filter(|k| !a.contains_key(*k)) {
+        c.structure
+            .push(format!("{}: {k}: only in {}", f.display(), after.display()));
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -363,6 +355,34 @@ mod tests {
         assert_eq!(r.noise_leaves, 1);
         assert!(r.text_changed.is_empty(), "{}", r.render());
         for d in [a, same, changed, noise] {
+            let _ = std::fs::remove_dir_all(d);
+        }
+    }
+
+    #[test]
+    fn check_compares_the_cases_of_the_run_only_and_flags_a_new_case() {
+        let reference = tree(
+            "ref",
+            &[
+                ("a.json", r#"{"x": 1.0}"#),
+                ("b.json", r#"{"x": 2.0}"#),
+                ("a.timings.json", r#"{"leaves": {"/wall_seconds": 1.0}}"#),
+            ],
+        );
+        let fresh = tree("fresh", &[("a.json", r#"{"x": 1.0}"#)]);
+        let r = check(&reference, &fresh, &["a".to_string()]).expect("checks");
+        assert!(r.same(), "{}", r.render());
+        assert_eq!(r.files, 1);
+        let r = check(&reference, &fresh, &["a".into(), "c".into()]).expect("checks");
+        assert!(
+            !r.same(),
+            "a case without a committed report fails the check"
+        );
+        let drifted = tree("drift", &[("a.json", r#"{"x": 1.0000000000000002}"#)]);
+        assert!(!check(&reference, &drifted, &["a".into()])
+            .expect("checks")
+            .same());
+        for d in [reference, fresh, drifted] {
             let _ = std::fs::remove_dir_all(d);
         }
     }

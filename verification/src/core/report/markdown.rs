@@ -287,11 +287,7 @@ fn case_section(s: &mut String, r: &CaseReport) {
         }
     }
     if let Some(perf) = &r.performance {
-        let _ = writeln!(
-            s,
-            "\n### Timings (budget {} s for the last size)\n",
-            perf.budget_seconds
-        );
+        let _ = writeln!(s, "\n### Timings (minimum over repeats)\n");
         let _ = writeln!(s, "| M | N | M·N | seconds | ns per dof-step |");
         let _ = writeln!(s, "|---|---|---|---|---|");
         for p in &perf.points {

@@ -1,7 +1,9 @@
-//! Reports: one JSON file per case (the contract, documented in `reports/README.md`) and one
-//! Markdown report with every case's tables and plots.
+//! Reports: per case a JSON file of its deterministic numbers and one of what varies from run to
+//! run (the contract, documented in `reports/README.md`), and one Markdown report with every
+//! case's tables and plots.
 
 pub mod case_report;
 pub mod compare;
 pub mod markdown;
 pub mod metadata;
+pub mod split;

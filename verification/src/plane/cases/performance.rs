@@ -1,8 +1,8 @@
-//! Kind `plane_performance`: the 2D time loop against its budget: the paper's Test 2D (clamped, β = 1000, 96 × 96 squares,
-//! k = 0.01, T = 1) must run its 100 steps in at most 0.28 s on this 2-core machine (a scikit-fem
-//! implementation of the same scheme with factorization reuse: 8.56 s; NGSolve: 18.7 s). A step's
-//! cost must grow no faster than the sparse solve's: the ratio step time / solve time is measured
-//! on several meshes.
+//! Kind `plane_performance`: the 2D time loop of the paper's Test 2D (clamped, β = 1000, k = 0.01,
+//! T = 1) on several meshes. A step's cost must grow no faster than the sparse solve's: the ratio
+//! step time / solve time (machine-independent) is gated across meshes. The absolute budget (100
+//! steps on 96 × 96 squares in at most 0.28 s on a 2-core machine) is the criterion benchmark's
+//! `benches/plane_time_loop.rs` (`verify benches`), never a gate of `verify`.
 
 use std::time::Instant;
 
@@ -26,15 +26,14 @@ pub struct PerformanceCase {
     pub plane_performance: PlanePerformanceSpec,
 }
 
-/// `[plane_performance]`: the paper's Test 2D time loop against a budget.
+/// `[plane_performance]`: the paper's Test 2D time loop on several meshes.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanePerformanceSpec {
-    /// Meshes (squares per side); the last is budgeted.
+    /// Meshes (squares per side).
     pub meshes: Vec<usize>,
     pub steps: usize,
     pub repeats: usize,
-    pub budget_seconds: f64,
     /// Largest growth of (step cost / sparse solve cost) across meshes (max/min).
     pub max_cost_ratio_spread: f64,
 }
@@ -54,7 +53,6 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
     let mut rows = Vec::new();
     let mut pts = Vec::new();
     let mut ratios = Vec::new();
-    let mut last = f64::NAN;
     for &n in &spec.meshes {
         let scene = variant(
             file,
@@ -99,19 +97,17 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
             format!("{ratio:.2}"),
         ]);
         pts.push((dofs as f64, per_step));
-        last = best;
     }
     let spread = ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max)
         / ratios.iter().copied().fold(f64::INFINITY, f64::min);
-    let finest = *spec.meshes.last().ok_or("no meshes")?;
-    report.gates.push(GateVerdict::from_checks(
-        "performance: the 2D time loop".into(),
-        "plane_performance",
-        vec![
-            Check::at_most(&format!("time loop, {finest}×{finest}, {} steps (s)", spec.steps), last, spec.budget_seconds),
-            Check::at_most("spread of (step time / sparse solve time) across meshes (max/min)", spread, spec.max_cost_ratio_spread),
-        ],
-        "best of repeats after a first run that factors (the median is in the table); the criterion benchmark measures the same loop",
+    report.gates.push(GateVerdict::from_timing_checks(
+        "performance: step cost against the sparse solve across meshes".into(),
+        vec![Check::at_most(
+            "spread of (step time / sparse solve time) across meshes (max/min)",
+            spread,
+            spec.max_cost_ratio_spread,
+        )],
+        "best of repeats after a first run that factors (the median is in the table); the absolute time is the criterion benchmark's (verify benches)",
     ));
     report.tables.push(Table {
         title: "time loop per mesh".into(),
@@ -122,7 +118,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
             "time loop, median (s)",
             "per step (ms)",
             "one sparse solve (ms)",
-            "step / solve",
+            "step / solve (timing ratio)",
         ]
         .iter()
         .map(|s| s.to_string())
