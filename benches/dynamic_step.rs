@@ -18,6 +18,10 @@
 //! analysis reused, one sparse solve, and the condensed path's forward + backward pass on the
 //! ball.
 //!
+//! The whole run `run/ring_impact_mu1_report`: the ring impact of the report
+//! (`examples/scenes/dynamic_ring_impact_mu1.toml`: BDS §1.7.2, 1 152 dofs, 700 steps, Gonzalez +
+//! IPM + Coulomb μ1), scene to solution; its budget is in `benches/budgets.toml`.
+//!
 //! `cargo bench --bench dynamic_step`
 
 use std::hint::black_box;
@@ -214,5 +218,20 @@ fn kernels(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, one_step, kernels);
+/// The report's ring impact, scene to solution.
+fn whole_run(c: &mut Criterion) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/scenes/dynamic_ring_impact_mu1.toml");
+    let scene = contactlab::scene::Scene::load(&path).expect("the example scene loads");
+    let mut g = c.benchmark_group("run");
+    g.sample_size(10);
+    g.measurement_time(Duration::from_secs(60));
+    g.warm_up_time(Duration::from_secs(1));
+    g.bench_function("ring_impact_mu1_report", |b| {
+        b.iter(|| black_box(scene.run().expect("the example runs")))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, one_step, kernels, whole_run);
 criterion_main!(benches);

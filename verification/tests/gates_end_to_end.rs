@@ -1,6 +1,7 @@
 //! Gates end to end: the paper's p0 = 6 rod with its true expected rate passes; the same case with
-//! a deliberately wrong expected rate, or a ceiling below the observed error, fails — and a failing
-//! case makes the report say so. Sweeps run on 1 and 2 threads give bit-identical errors.
+//! a deliberately wrong expected rate fails — and a failing case makes the report say so; a gate
+//! that picks its levels by hand is refused. Sweeps run on 1 and 2 threads give bit-identical
+//! errors.
 
 use contactlab_verify::core::case::Case;
 use contactlab_verify::core::context::RunContext;
@@ -36,15 +37,11 @@ error = "paper_E"
 against = "h_plus_k"
 expected_rate = EXPECTED
 tolerance = 0.05
-finest_levels = 3
 ci_width = 0.05
-ceiling = CEILING
 "#;
 
-fn case(expected: f64, ceiling: f64) -> Case {
-    let text = CASE
-        .replace("EXPECTED", &expected.to_string())
-        .replace("CEILING", &format!("{ceiling:e}"));
+fn case(expected: f64) -> Case {
+    let text = CASE.replace("EXPECTED", &expected.to_string());
     Case::from_text(std::path::Path::new("e2e.toml"), &text).unwrap()
 }
 
@@ -58,26 +55,30 @@ fn ctx(tag: &str) -> RunContext {
 
 #[test]
 fn true_expected_rate_passes() {
-    let r = registry::run(&case(1.0, 1e-1), &ctx("pass"));
+    let r = registry::run(&case(1.0), &ctx("pass"));
     assert!(r.passed, "{:?}", r.gates);
 }
 
 #[test]
 fn deliberately_wrong_expected_rate_fails() {
-    let r = registry::run(&case(2.0, 1e-1), &ctx("rate"));
+    let r = registry::run(&case(2.0), &ctx("rate"));
     assert!(!r.passed);
     assert!(!r.gates[0].checks[0].passed);
 }
 
 #[test]
-fn ceiling_below_the_finest_error_fails() {
-    let r = registry::run(&case(1.0, 1e-4), &ctx("ceiling"));
-    assert!(!r.passed);
+fn levels_picked_by_hand_are_refused() {
+    let text = CASE
+        .replace("EXPECTED", "1.0")
+        .replace("ci_width = 0.05", "ci_width = 0.05\nfinest_levels = 3");
+    let c = Case::from_text(std::path::Path::new("e2e.toml"), &text).unwrap();
+    let e = registry::check(&c).unwrap_err().to_string();
+    assert!(e.contains("finest_levels"), "{e}");
 }
 
 #[test]
 fn sweeps_are_bit_identical_on_one_and_two_threads() {
-    let c = case(1.0, 1e-1);
+    let c = case(1.0);
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()

@@ -15,10 +15,13 @@
 //! equation in α, solved by safeguarded Newton after an existence check: the contact forces can
 //! only balance loads inside the range the law's pressures allow.
 
-use faer::linalg::solvers::{Llt, Solve};
-use faer::{Mat, Side};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Mat, Par};
 
 use crate::contact::normal_law::{NormalLaw, SpaceTime};
+use crate::solve::dense_cholesky::cholesky_factor;
 use crate::solve::scalar_semismooth::{solve_increasing, Evaluation, ScalarNewtonParams};
 
 /// Why the condensed contact problem was not solved.
@@ -59,7 +62,11 @@ pub struct CondensedContact {
     pub weights: Vec<f64>,
     pub points: Vec<SpaceTime>,
     cache_slopes: Vec<f64>,
-    cache: Option<Llt<f64>>,
+    /// The Cholesky factor L of the cached Jacobian (lower triangle; `Par::Seq`: the same bits
+    /// whatever the thread count).
+    cache: Option<Mat<f64>>,
+    /// The Newton right-hand side, m × 1 (allocated once).
+    rhs: Mat<f64>,
     /// Point values, and Σ|terms| of each r (the round-off scale of r).
     r: Vec<f64>,
     r_abs: Vec<f64>,
@@ -90,6 +97,7 @@ impl CondensedContact {
             points,
             cache_slopes: Vec::new(),
             cache: None,
+            rhs: Mat::zeros(m, 1),
             r: vec![0.0; nc],
             r_abs: vec![0.0; nc],
             p: vec![0.0; nc],
@@ -199,8 +207,8 @@ impl CondensedContact {
                 }
             }
         }
-        let llt = j.llt(Side::Lower).map_err(|_| ContactFailure::NonFinite)?;
-        self.cache = Some(llt);
+        let l = cholesky_factor(j.as_ref()).map_err(|_| ContactFailure::NonFinite)?;
+        self.cache = Some(l);
         self.cache_slopes.clone_from(&self.dp);
         self.factorizations += 1;
         Ok(())
@@ -234,12 +242,15 @@ impl CondensedContact {
                 });
             }
             self.factor()?;
-            let mut rhs = Mat::<f64>::from_fn(m, 1, |i, _| -self.res[i]);
-            if let Some(llt) = &self.cache {
-                llt.solve_in_place(rhs.as_mut());
+            for i in 0..m {
+                self.rhs[(i, 0)] = -self.res[i];
+            }
+            if let Some(l) = &self.cache {
+                solve_lower_triangular_in_place(l.as_ref(), self.rhs.as_mut(), Par::Seq);
+                solve_upper_triangular_in_place(l.transpose(), self.rhs.as_mut(), Par::Seq);
             }
             for i in 0..m {
-                self.step[i] = rhs[(i, 0)];
+                self.step[i] = self.rhs[(i, 0)];
             }
             if self.step.iter().any(|v| !v.is_finite()) {
                 return Err(ContactFailure::NonFinite);
@@ -284,22 +295,22 @@ impl CondensedContact {
     /// dr/dα = C_Γ dw/dα + G, dφ/dα = Gᵀ D dr/dα (uses the cached J of the last Newton step).
     fn floating_slope(&mut self) -> Result<f64, ContactFailure> {
         self.factor()?;
-        let m = self.s.nrows();
-        let mut rhs = Mat::<f64>::zeros(m, 1);
+        self.rhs.fill(0.0);
         for (pt, row) in self.rows.iter().enumerate() {
             let d = self.weights[pt] * self.dp[pt] * self.g[pt];
             for &(i, c) in row {
-                rhs[(i, 0)] -= c * d;
+                self.rhs[(i, 0)] -= c * d;
             }
         }
-        if let Some(llt) = &self.cache {
-            llt.solve_in_place(rhs.as_mut());
+        if let Some(l) = &self.cache {
+            solve_lower_triangular_in_place(l.as_ref(), self.rhs.as_mut(), Par::Seq);
+            solve_upper_triangular_in_place(l.transpose(), self.rhs.as_mut(), Par::Seq);
         }
         let mut slope = 0.0;
         for (pt, row) in self.rows.iter().enumerate() {
             let mut dr = self.g[pt];
             for &(i, c) in row {
-                dr += c * rhs[(i, 0)];
+                dr += c * self.rhs[(i, 0)];
             }
             slope += self.g[pt] * self.weights[pt] * self.dp[pt] * dr;
         }

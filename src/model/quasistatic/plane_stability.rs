@@ -8,12 +8,15 @@
 //! (b2/a2) and volumetric ((2b1 + b2)/(2a1 + a2)) parts, so λ_max ≤ max of the two, approached as the
 //! mesh resolves strains concentrated in the worse mode.
 
-use faer::{Mat, Side};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::evd;
+use faer::{Mat, Par};
 
 use crate::error::{Error, InputError, SolveError};
 use crate::material::plane_law::IsotropicLinear;
 use crate::model::quasistatic::plane_condensed::assemble_linear;
 use crate::model::quasistatic::plane_solver::PlaneSolver;
+use crate::solve::dense_cholesky::cholesky_factor;
 
 /// The largest dof count for which the dense generalized eigenproblem is solved.
 pub const DENSE_LIMIT: usize = 4000;
@@ -62,12 +65,17 @@ pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error>
         m
     };
     let (ka, kb) = (dense(a), dense(b));
-    let llt = ka.llt(Side::Lower).map_err(|_| SolveError::Singular {
+    // every factorization sequential (`Par::Seq`): the same bits whatever the thread count
+    let mut l = cholesky_factor(ka.as_ref()).map_err(|row| SolveError::Singular {
         operator: "K_A (viscosity)".into(),
-        row: 0,
-        pivot: f64::NAN,
+        row,
+        pivot: ka[(row, row)],
     })?;
-    let l = llt.L().to_owned();
+    for j in 1..n {
+        for i in 0..j {
+            l[(i, j)] = 0.0;
+        }
+    }
     // C = L⁻¹ K_B L⁻ᵀ
     let mut c = kb;
     faer::linalg::triangular_solve::solve_lower_triangular_in_place(
@@ -81,14 +89,29 @@ pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error>
         ct.as_mut(),
         faer::Par::Seq,
     );
-    let eig = ct
-        .self_adjoint_eigenvalues(Side::Lower)
-        .map_err(|_| SolveError::Singular {
-            operator: "L⁻¹ K_B L⁻ᵀ (eigenvalues did not converge)".into(),
-            row: 0,
-            pivot: f64::NAN,
-        })?;
-    eig.last()
-        .copied()
+    let mut s = faer::diag::Diag::<f64>::zeros(n);
+    let mut buf = MemBuffer::new(evd::self_adjoint_evd_scratch::<f64>(
+        n,
+        evd::ComputeEigenvectors::No,
+        Par::Seq,
+        Default::default(),
+    ));
+    evd::self_adjoint_evd(
+        ct.as_ref(),
+        s.as_mut(),
+        None,
+        Par::Seq,
+        MemStack::new(&mut buf),
+        Default::default(),
+    )
+    .map_err(|_| SolveError::Singular {
+        operator: "L⁻¹ K_B L⁻ᵀ (eigenvalues did not converge)".into(),
+        row: 0,
+        pivot: f64::NAN,
+    })?;
+    // faer returns the eigenvalues in nondecreasing order
+    (0..n)
+        .map(|i| s[i])
+        .reduce(f64::max)
         .ok_or_else(|| InputError::new("mesh", "0 dofs", "at least one free dof").into())
 }

@@ -7,6 +7,7 @@
 //! - `verify --list`                the catalogue
 //! - `verify scene FILE.toml --out DIR`   run a user's scene
 //! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
+//! - `verify benches`   criterion's measurements against `benches/budgets.toml` (after `cargo bench`)
 //! - `verify --quick --out DIR --check reports`   run, then fail when a deterministic number
 //!   differs from the committed report of the same case (CI)
 
@@ -18,6 +19,7 @@ use clap::{Parser, Subcommand};
 
 use contactlab_verify::core::case::{Case, Tier};
 use contactlab_verify::core::context::RunContext;
+use contactlab_verify::core::report::benchmarks;
 use contactlab_verify::core::report::compare::{check, compare};
 use contactlab_verify::core::report::markdown;
 use contactlab_verify::core::report::metadata::Metadata;
@@ -68,6 +70,20 @@ enum Command {
         #[arg(long, default_value = "scene-out")]
         out: PathBuf,
     },
+    /// Criterion's measurements (run `cargo bench` first) against the budgets of
+    /// benches/budgets.toml: writes reports/benchmarks.md and .json; exit 1 when a budget is
+    /// missed or unmeasured.
+    Benches {
+        /// The budgets (default: <repository>/benches/budgets.toml).
+        #[arg(long)]
+        budgets: Option<PathBuf>,
+        /// Criterion's output (default: <repository>/target/criterion).
+        #[arg(long)]
+        criterion: Option<PathBuf>,
+        /// Output directory (default: <repository>/reports).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Compare two report directories: every number (and every non-prose text) must be equal;
     /// timings are left out. Exit 1 when they differ.
     Compare {
@@ -116,6 +132,43 @@ fn main() -> ExitCode {
                         ExitCode::SUCCESS
                     } else {
                         println!("the reports differ");
+                        ExitCode::from(1)
+                    }
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            };
+        }
+        Some(Command::Benches {
+            budgets,
+            criterion,
+            out,
+        }) => {
+            let root = repository_root();
+            let budgets = budgets
+                .clone()
+                .unwrap_or_else(|| root.join("benches/budgets.toml"));
+            let criterion = criterion
+                .clone()
+                .unwrap_or_else(|| root.join("target/criterion"));
+            let out = out.clone().unwrap_or_else(|| root.join("reports"));
+            return match benchmarks::collect(&budgets, &criterion) {
+                Ok(r) => {
+                    let md = r.markdown();
+                    print!("{md}");
+                    let json = serde_json::to_string_pretty(&r).unwrap_or_default();
+                    for (name, text) in [("benchmarks.md", md), ("benchmarks.json", json)] {
+                        let path = out.join(name);
+                        if let Err(e) = std::fs::write(&path, text) {
+                            eprintln!("error: writing {}: {e}", path.display());
+                            return ExitCode::from(2);
+                        }
+                    }
+                    if r.passed() {
+                        ExitCode::SUCCESS
+                    } else {
                         ExitCode::from(1)
                     }
                 }

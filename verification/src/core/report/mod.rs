@@ -2,6 +2,7 @@
 //! run (the contract, documented in `reports/README.md`), and one Markdown report with every
 //! case's tables and plots.
 
+pub mod benchmarks;
 pub mod case_report;
 pub mod compare;
 pub mod markdown;

@@ -49,11 +49,30 @@ pub struct Split {
 }
 
 /// Splits a serialized case report (any JSON value: other files split the same way).
+///
+/// A report with timing gates has a `passed` that depends on them: it moves to the varying part,
+/// and the deterministic part says `passed_without_timings` (no failure, every other gate passed).
 pub fn split(report: &Value) -> Split {
     let mut leaves = Map::new();
     let mut gates = Vec::new();
     let mut metadata = Value::Null;
-    let deterministic = strip(report, "", &mut leaves, &mut gates, &mut metadata);
+    let mut deterministic = strip(report, "", &mut leaves, &mut gates, &mut metadata);
+    if !gates.is_empty() {
+        if let Value::Object(map) = &mut deterministic {
+            if let Some(p) = map.remove("passed") {
+                leaves.insert("/passed".into(), p);
+                let kept_pass = map.get("gates").and_then(Value::as_array).is_some_and(|g| {
+                    g.iter()
+                        .all(|g| g.get("passed").and_then(Value::as_bool) == Some(true))
+                });
+                let no_failure = map.get("failure").is_none_or(Value::is_null);
+                map.insert(
+                    "passed_without_timings".into(),
+                    Value::Bool(kept_pass && no_failure),
+                );
+            }
+        }
+    }
     let mut varying = Map::new();
     varying.insert("metadata".into(), metadata);
     varying.insert("gates".into(), Value::Array(gates));
@@ -189,6 +208,8 @@ mod tests {
     fn timings_metadata_and_timing_gates_leave_the_deterministic_part() {
         let r = json!({
             "id": "c",
+            "passed": false,
+            "failure": null,
             "wall_seconds": 3.5,
             "metadata": {"git": "abc"},
             "gates": [
@@ -206,6 +227,14 @@ mod tests {
         assert!(d.get("wall_seconds").is_none());
         assert!(d.get("metadata").is_none());
         assert_eq!(d["gates"].as_array().map(Vec::len), Some(1));
+        assert!(
+            d.get("passed").is_none(),
+            "the verdict depends on a timing gate"
+        );
+        assert_eq!(
+            d["passed_without_timings"], false,
+            "the kept gate has no verdict"
+        );
         assert_eq!(d["sweeps"][0]["levels"][0], json!({"h": 0.5}));
         assert_eq!(d["tables"][0]["rows"][0], json!(["10", null, null]));
         let v = &s.varying;
