@@ -6,10 +6,12 @@
 //! | `rod_stability` | [`cases::stability`] | the explicit bound k < 2a/b: predicted against observed amplification |
 //! | `rod_extremes` | [`cases::extremes`] | data at the edge of the admissible range: correct numbers or a clear error |
 //! | `rod_work_precision` | [`cases::work_precision`] | error against cost for each scheme |
-//! | `rod_performance` | [`cases::performance`] | the time loop of the largest run and its growth in M·N |
+//! | `rod_performance` | [`cases::performance`] | the time loop at several sizes: its growth in M·N |
+//! | `rod_discrete_reference` | [`cases::discrete_reference`] | the three schemes against a second implementation ([`reference`]) at round-off |
 
 pub mod cases;
 pub mod errors;
+pub mod reference;
 pub mod scene;
 pub mod study;
 
@@ -38,6 +40,7 @@ impl Family for Rod {
             "rod_extremes",
             "rod_work_precision",
             "rod_performance",
+            "rod_discrete_reference",
         ]
     }
 
@@ -50,6 +53,9 @@ impl Family for Rod {
                 cases::work_precision::WorkPrecisionCase::parse(case).map(|_| ())
             }
             "rod_performance" => cases::performance::PerformanceCase::parse(case).map(|_| ()),
+            "rod_discrete_reference" => {
+                cases::discrete_reference::DiscreteReferenceCase::parse(case).map(|_| ())
+            }
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -61,6 +67,7 @@ impl Family for Rod {
             "rod_extremes" => cases::extremes::run(case, ctx, report),
             "rod_work_precision" => cases::work_precision::run(case, ctx, report),
             "rod_performance" => cases::performance::run(case, ctx, report),
+            "rod_discrete_reference" => cases::discrete_reference::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

@@ -2,6 +2,7 @@
 //! checks, and its runner.
 
 pub mod convergence;
+pub mod discrete_reference;
 pub mod extremes;
 pub mod paper_figures;
 pub mod performance;
