@@ -7,6 +7,7 @@
 //! - `verify --list`                the catalogue
 //! - `verify scene FILE.toml --out DIR`   run a user's scene
 //! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
+//! - `verify readme [--check]`   the README's numbers, generated from reports/
 //! - `verify benches`   criterion's measurements against `benches/budgets.toml` (after `cargo bench`)
 //! - `verify --quick --out DIR --check reports`   run, then fail when a deterministic number
 //!   differs from the committed report of the same case (CI)
@@ -23,6 +24,7 @@ use contactlab_verify::core::report::benchmarks;
 use contactlab_verify::core::report::compare::{check, compare};
 use contactlab_verify::core::report::markdown;
 use contactlab_verify::core::report::metadata::Metadata;
+use contactlab_verify::core::report::readme;
 use contactlab_verify::registry;
 
 #[derive(Parser, Debug)]
@@ -69,6 +71,12 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "scene-out")]
         out: PathBuf,
+    },
+    /// Regenerate the README's numbers (its `<!-- generated: … -->` blocks) from reports/;
+    /// with --check, exit 1 when they differ instead.
+    Readme {
+        #[arg(long)]
+        check: bool,
     },
     /// Criterion's measurements (run `cargo bench` first) against the budgets of
     /// benches/budgets.toml: writes reports/benchmarks.md and .json; exit 1 when a budget is
@@ -135,6 +143,43 @@ fn main() -> ExitCode {
                         ExitCode::from(1)
                     }
                 }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            };
+        }
+        Some(Command::Readme { check }) => {
+            let root = repository_root();
+            let path = root.join("README.md");
+            let result = std::fs::read_to_string(&path)
+                .map_err(|e| format!("{}: {e}", path.display()))
+                .and_then(|text| {
+                    let blocks = readme::render(&root.join("reports"))?;
+                    Ok((readme::fill(&text, &blocks)?, text))
+                });
+            return match result {
+                Ok((new, old)) if *check => {
+                    if new == old {
+                        println!("README.md: the numbers equal the reports'");
+                        ExitCode::SUCCESS
+                    } else {
+                        println!(
+                            "README.md: the numbers differ from the reports' (run `verify readme`)"
+                        );
+                        ExitCode::from(1)
+                    }
+                }
+                Ok((new, _)) => match std::fs::write(&path, new) {
+                    Ok(()) => {
+                        println!("wrote {}", path.display());
+                        ExitCode::SUCCESS
+                    }
+                    Err(e) => {
+                        eprintln!("error: {}: {e}", path.display());
+                        ExitCode::from(2)
+                    }
+                },
                 Err(e) => {
                     eprintln!("error: {e}");
                     ExitCode::from(2)

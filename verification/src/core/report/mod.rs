@@ -7,4 +7,5 @@ pub mod case_report;
 pub mod compare;
 pub mod markdown;
 pub mod metadata;
+pub mod readme;
 pub mod split;
