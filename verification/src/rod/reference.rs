@@ -22,14 +22,21 @@
 //! element; the data sets below are affine in x and [`RodData::check_affine`] verifies it), u_0
 //! is the nodal interpolant of u0.
 
+use std::sync::Arc;
+
 use nalgebra::{DMatrix, DVector};
 
 use contactlab::model::quasistatic::scheme::TimeScheme;
 
+/// A function of (x, t).
+pub type SpaceTimeFn = Arc<dyn Fn(f64, f64) -> f64 + Send + Sync>;
+/// A function of one variable.
+pub type ScalarFn = Arc<dyn Fn(f64) -> f64 + Send + Sync>;
+
 /// The data of a rod run, as plain functions (the solver gets the same functions as fields).
-#[derive(Debug, Clone, Copy)]
+#[derive(Clone)]
 pub struct RodData {
-    pub name: &'static str,
+    pub name: String,
     pub length: f64,
     pub final_time: f64,
     /// a, b, β.
@@ -37,11 +44,17 @@ pub struct RodData {
     pub elasticity: f64,
     pub beta: f64,
     /// f0(x, t), affine in x.
-    pub load: fn(f64, f64) -> f64,
+    pub load: SpaceTimeFn,
     /// p0(t).
-    pub oil_pressure: fn(f64) -> f64,
+    pub oil_pressure: ScalarFn,
     /// u0(x), u0(0) = 0.
-    pub initial: fn(f64) -> f64,
+    pub initial: ScalarFn,
+}
+
+impl std::fmt::Debug for RodData {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "RodData({})", self.name)
+    }
 }
 
 impl RodData {
@@ -51,28 +64,72 @@ impl RodData {
     /// (the damper acts) and recedes.
     pub fn switching_oil_pressure() -> Self {
         Self {
-            name: "switching_oil_pressure",
+            name: "switching_oil_pressure".into(),
             length: 1.0,
             final_time: 1.0,
             viscosity: 1.0,
             elasticity: 2.0,
             beta: 3.0,
-            load: |x, t| 10.0 + 4.0 * x * (3.0 * t).sin(),
-            oil_pressure: |t| 5.0 + 3.0 * (4.0 * t).sin(),
-            initial: |x| 0.1 * x * (2.0 - x),
+            load: Arc::new(|x, t| 10.0 + 4.0 * x * (3.0 * t).sin()),
+            oil_pressure: Arc::new(|t| 5.0 + 3.0 * (4.0 * t).sin()),
+            initial: Arc::new(|x| 0.1 * x * (2.0 - x)),
         }
+    }
+
+    /// Constant data, u0 = 0: the paper's rod (§4.1) with (L, T, a, b, β, f0, p0).
+    #[allow(clippy::too_many_arguments)]
+    pub fn constant(
+        name: &str,
+        (length, final_time): (f64, f64),
+        (viscosity, elasticity, beta): (f64, f64, f64),
+        load: f64,
+        p0: f64,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            length,
+            final_time,
+            viscosity,
+            elasticity,
+            beta,
+            load: Arc::new(move |_, _| load),
+            oil_pressure: Arc::new(move |_| p0),
+            initial: Arc::new(|_| 0.0),
+        }
+    }
+
+    /// The paper's data (L = 1, T = 0.5, a = b = β = 1, f0 = 10) with oil pressure p0.
+    pub fn paper(p0: f64) -> Self {
+        Self::constant(
+            &format!("paper_p0_{p0}"),
+            (1.0, 0.5),
+            (1.0, 1.0, 1.0),
+            10.0,
+            p0,
+        )
     }
 
     /// The data set of a name.
     pub fn named(name: &str) -> Option<Self> {
-        [Self::switching_oil_pressure()]
-            .into_iter()
-            .find(|d| d.name == name)
+        [
+            Self::switching_oil_pressure(),
+            Self::paper(6.0),
+            Self::paper(2.0),
+        ]
+        .into_iter()
+        .find(|d| d.name == name)
     }
 
     /// Every data set's name.
-    pub fn names() -> Vec<&'static str> {
-        vec![Self::switching_oil_pressure().name]
+    pub fn names() -> Vec<String> {
+        [
+            Self::switching_oil_pressure(),
+            Self::paper(6.0),
+            Self::paper(2.0),
+        ]
+        .into_iter()
+        .map(|d| d.name)
+        .collect()
     }
 
     /// Whether f0 is affine in x (the load vector is then integrated exactly): f0 at the
@@ -168,6 +225,32 @@ pub fn reference_run(data: &RodData, m: usize, n: usize, scheme: TimeScheme) -> 
     out
 }
 
+/// The round-off bound of two implementations of N steps on M elements:
+/// C ε κ(K) N scale with κ(K) ≈ 4M²/π² + 1 (each step solves a system of condition at most
+/// κ(K); the errors of N steps add at most linearly) and C = 16 (a few operations per entry of a
+/// tridiagonal solve).
+pub fn round_off_bound(m: usize, n: usize, scale: f64) -> f64 {
+    let kappa = 4.0 * (m * m) as f64 / std::f64::consts::PI.powi(2) + 1.0;
+    16.0 * f64::EPSILON * kappa * n as f64 * scale
+}
+
+/// max_n ‖a_n − b_n‖_∞ and max_n ‖b_n‖_∞ over two runs' nodal states (`None` when their
+/// shapes differ).
+pub fn max_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> Option<(f64, f64)> {
+    if a.len() != b.len() || a.iter().zip(b).any(|(x, y)| x.len() != y.len()) {
+        return None;
+    }
+    let mut diff = 0.0_f64;
+    let mut scale = 0.0_f64;
+    for (x, y) in a.iter().zip(b) {
+        for (p, q) in x.iter().zip(y) {
+            diff = diff.max((p - q).abs());
+            scale = scale.max(q.abs());
+        }
+    }
+    Some((diff, scale))
+}
+
 #[cfg(test)]
 mod tests {
     //! The reference against what it must satisfy independently of the solver: constant data
@@ -177,17 +260,7 @@ mod tests {
     use super::*;
 
     fn constant() -> RodData {
-        RodData {
-            name: "constant",
-            length: 1.0,
-            final_time: 40.0,
-            viscosity: 1.0,
-            elasticity: 1.0,
-            beta: 1.0,
-            load: |_, _| 10.0,
-            oil_pressure: |_| 6.0,
-            initial: |_| 0.0,
-        }
+        RodData::constant("constant", (1.0, 40.0), (1.0, 1.0, 1.0), 10.0, 6.0)
     }
 
     #[test]
@@ -205,10 +278,7 @@ mod tests {
     #[test]
     fn one_implicit_step_solves_its_linear_system() {
         // u0 = 0, p0 = 6 > threshold: the end recedes, so (a + kb) K w = F − p0 e_M
-        let d = RodData {
-            final_time: 0.1,
-            ..constant()
-        };
+        let d = RodData::constant("one step", (1.0, 0.1), (1.0, 1.0, 1.0), 10.0, 6.0);
         let r = reference_run(&d, 4, 1, TimeScheme::Implicit);
         // exact P1 solution of −(1.1) w'' = 10, w(0) = 0, 1.1 w'(1) = −6
         for (i, u) in r.u[1].iter().enumerate() {
