@@ -90,12 +90,7 @@ impl DiscreteReferenceCase {
             Some(_) => {}
         }
         if s.runs.is_empty() {
-            return Err(invalid(
-                p,
-                "discrete_reference.runs",
-                "[]",
-                "at least one [M, N]",
-            ));
+            return Err(invalid(p, &field("runs"), "[]", "at least one [M, N]"));
         }
         for (i, [m, n]) in s.runs.iter().enumerate() {
             if !(1..=2000).contains(m) || !(1..=20000).contains(n) {
