@@ -14,6 +14,7 @@
 //! | `moving_extremes` | [`cases::extremes`] | v̄ → 1, k̄_p → 10¹⁵, undamped gyroscopic–circulatory systems, near-defective eigenvalues |
 //! | `moving_map` | [`cases::map`] | the 200 × 200 map, deterministic, every point checked against faer, boundaries converged in N |
 
+pub mod bounds;
 pub mod cases;
 pub mod convergence;
 pub mod errors;

@@ -17,6 +17,8 @@
 //!   the bracket (reported), the onsets agree within two bracket widths.
 
 use nalgebra::{Complex, DMatrix};
+
+use crate::moving::bounds::agreement;
 use serde::Serialize;
 
 use contactlab::model::moving::string_data::{ContactModel, MovingStringData};
@@ -102,35 +104,6 @@ fn defect(a: impl Fn(usize, usize) -> f64, b: &DMatrix<f64>) -> f64 {
     }
 }
 
-/// The condition number κ(λ) = ‖x‖‖y‖/|yᴴx| of the eigenvalue λ of `a`, with x and y from one
-/// step of inverse iteration with A − λI and its adjoint (λ is accurate to round-off, so the
-/// solve amplifies the eigenvector's component by 1/|round-off|).
-fn condition(a: &DMatrix<f64>, lambda: C64) -> f64 {
-    let n = a.nrows();
-    // shifted off λ by 1e-12 |λ| (an exactly singular pivot would stop the solve; the shift
-    // changes the iteration's contraction, not its limit)
-    let mu = lambda + C64::new(1.0, 1.0) * (1e-12 * lambda.norm().max(1.0));
-    let shifted = DMatrix::from_fn(n, n, |i, j| {
-        C64::new(a[(i, j)], 0.0) - if i == j { mu } else { C64::new(0.0, 0.0) }
-    });
-    // a fixed, generic right-hand side (no accidental orthogonality to an eigenvector)
-    let rhs = nalgebra::DVector::from_fn(n, |i, _| {
-        C64::new(1.0 + 0.37 * i as f64, 0.11 * i as f64 - 0.5)
-    });
-    let solve = |m: DMatrix<C64>| -> Option<nalgebra::DVector<C64>> {
-        let lu = m.lu();
-        let x = lu.solve(&rhs)?;
-        let x = x.unscale(x.norm());
-        let x = lu.solve(&x)?;
-        Some(x.unscale(x.norm()))
-    };
-    let (Some(x), Some(y)) = (solve(shifted.clone()), solve(shifted.adjoint())) else {
-        // no condition number: the gate that divides by it fails (NaN)
-        return f64::NAN;
-    };
-    1.0 / y.dotc(&x).norm()
-}
-
 /// Compares the program with the reference at one (set, N, p).
 fn compare(
     model: &MovingStringModel,
@@ -148,41 +121,22 @@ fn compare(
         defect(|i, j| k[(i, j)], &reference.stiffness),
     ];
     let a = reference.first_order()?;
-    let norm_a = a.norm();
-    let n = a.nrows() as f64;
     let ref_ev = GalerkinMatrices::eigenvalues(&reference)?;
     let prog_ev: Vec<C64> = eigenvalues(&sys)?
         .iter()
         .map(|z| C64::new(z.re, z.im))
         .collect();
-    if prog_ev.len() != ref_ev.len() {
-        return Err(format!(
-            "{set}, N = {modes}: {} program eigenvalues, {} reference eigenvalues",
-            prog_ev.len(),
-            ref_ev.len()
-        ));
-    }
-    let rho = ref_ev.iter().map(|l| l.norm()).fold(0.0, f64::max);
-    let (mut ratio, mut rel, mut kmax) = (0.0f64, 0.0f64, 0.0f64);
-    for &l in &ref_ev {
-        let nearest = prog_ev
-            .iter()
-            .map(|m| (m - l).norm())
-            .fold(f64::INFINITY, f64::min);
-        let kappa = condition(&a, l);
-        kmax = kmax.max(kappa);
-        ratio = ratio.max(nearest / (n * f64::EPSILON * norm_a * kappa));
-        rel = rel.max(nearest / rho);
-    }
+    let agreed =
+        agreement(&a, &ref_ev, &prog_ev, 0.0).map_err(|e| format!("{set}, N = {modes}: {e}"))?;
     let max_re = |v: &[C64]| v.iter().map(|l| l.re).fold(f64::NEG_INFINITY, f64::max);
     Ok(DiscreteRow {
         set: set.to_string(),
         modes,
         control: d.control,
         matrix_defects,
-        eigen_ratio: ratio,
-        eigen_relative: rel,
-        max_condition: kmax,
+        eigen_ratio: agreed.ratio,
+        eigen_relative: agreed.relative,
+        max_condition: agreed.max_condition,
         max_re_program: max_re(&prog_ev),
         max_re_reference: max_re(&ref_ev),
     })
