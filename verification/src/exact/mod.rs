@@ -7,11 +7,16 @@
 //!   hitting a rigid wall; docs/dynamic.md §5).
 //! - `moving_string`: eigenvalues of the axially moving string, alone and with an oscillator
 //!   (Hetzler 2009, §4.2.1; docs/moving_continua.md).
+//! - `thick_string_galerkin`, `thick_string_continuum`: the thick string with friction (Hetzler
+//!   2009, §4.2.2): an independent sine-Galerkin model (closed-form integrals, its own
+//!   eigensolver) and the continuum characteristic function with the jump conditions at ā.
 
 pub mod moving_string;
 pub mod rod_constant_data;
 pub mod rod_paper;
 pub mod signorini_bar;
+pub mod thick_string_continuum;
+pub mod thick_string_galerkin;
 
 /// u and the derivatives the rod's equations and error norms need, at one (x, t).
 #[derive(Debug, Clone, Copy, PartialEq)]

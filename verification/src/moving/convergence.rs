@@ -82,7 +82,8 @@ impl Convergence {
 
     /// The levels at speed v̄ = `speed` of the string with data `d`: every discretization of
     /// [`Convergence::plans`] against the exact frequencies `exact` of the first modes (their
-    /// number is `modes_checked`), with max |Re λ| / max |λ| when `real_parts` is set.
+    /// number is `modes_checked`), with max |Re λ| / (n ε max |λ|) (n eigenvalues) when
+    /// `real_parts` is set.
     pub fn levels(
         &self,
         speed: f64,
@@ -112,7 +113,8 @@ impl Convergence {
                 h,
                 error: mode_errors.iter().copied().fold(0.0, f64::max),
                 mode_errors,
-                max_relative_real_part: real_parts.then(|| relative_real_part(&ev)),
+                real_part_round_off: real_parts
+                    .then(|| relative_real_part(&ev) / (ev.len() as f64 * f64::EPSILON)),
             });
         }
         Ok(levels)
@@ -156,9 +158,9 @@ pub struct Level {
     pub mode_errors: Vec<f64>,
     /// The largest of `mode_errors`.
     pub error: f64,
-    /// max |Re λ| / max |λ|, where measured.
+    /// max |Re λ| / (n ε max |λ|) (n eigenvalues), where measured.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_relative_real_part: Option<f64>,
+    pub real_part_round_off: Option<f64>,
 }
 
 /// Evaluates each rate gate on its series `basis/speed` of `levels` (error against 1/N or h)

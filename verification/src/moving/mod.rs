@@ -5,6 +5,7 @@
 //! | kind | file | what it establishes |
 //! |---|---|---|
 //! | `moving_string` | [`cases::string`] | ω_n = nπ(1 − v̄²) with observed rates in N and h (sine, P1, Hermite), zero real parts, the divergence boundary v̄ = 1, loci and Campbell diagram |
+//! | `moving_flutter` | [`cases::flutter`] | the thick string with friction against an independent sine-Galerkin model (equal N: matrices, eigenvalues, onsets to round-off) and against the continuum's characteristic function (rates, resolved onsets) |
 //! | `moving_oscillator` | [`cases::oscillator`] | the string with an oscillator against the exact characteristic equation: rates, tracked branches through veering |
 //! | `moving_symmetry` | [`cases::symmetry`] | G = −Gᵀ and K_T = K_Tᵀ exactly when R_P, R_Q vanish (Figs 10–12), both directions |
 //! | `moving_penalty` | [`cases::penalty`] | penalty → ideal contact at rate 1 in 1/k̄_p; with friction, the nominal circulatory parameter μ k̄_p h̄ and the flutter boundary |
@@ -13,6 +14,7 @@
 //! | `moving_extremes` | [`cases::extremes`] | v̄ → 1, k̄_p → 10¹⁵, undamped gyroscopic–circulatory systems, near-defective eigenvalues |
 //! | `moving_map` | [`cases::map`] | the 200 × 200 map, deterministic, every point checked against faer, boundaries converged in N |
 
+pub mod bounds;
 pub mod cases;
 pub mod convergence;
 pub mod errors;
@@ -31,6 +33,7 @@ use crate::core::report::case_report::CaseReport;
 use crate::family::Family;
 use cases::disc::DiscCase;
 use cases::extremes::ExtremesCase;
+use cases::flutter::FlutterCase;
 use cases::map::MapCase;
 use cases::oscillator::OscillatorCase;
 use cases::penalty::PenaltyCase;
@@ -60,6 +63,7 @@ impl Family for Moving {
         &[
             "moving_string",
             "moving_oscillator",
+            "moving_flutter",
             "moving_symmetry",
             "moving_penalty",
             "moving_disc",
@@ -73,6 +77,7 @@ impl Family for Moving {
         match case.header.kind.as_str() {
             "moving_string" => checked(case, StringCase::check).map(|_| ()),
             "moving_oscillator" => checked(case, OscillatorCase::check).map(|_| ()),
+            "moving_flutter" => checked(case, FlutterCase::check).map(|_| ()),
             "moving_symmetry" => checked(case, SymmetryCase::check).map(|_| ()),
             "moving_penalty" => checked(case, PenaltyCase::check).map(|_| ()),
             "moving_disc" => checked(case, DiscCase::check).map(|_| ()),
@@ -94,6 +99,9 @@ impl Family for Moving {
                 ctx,
                 report,
             ),
+            "moving_flutter" => {
+                cases::flutter::run(&checked(case, FlutterCase::check).map_err(e)?, ctx, report)
+            }
             "moving_symmetry" => {
                 cases::symmetry::run(&checked(case, SymmetryCase::check).map_err(e)?, ctx, report)
             }

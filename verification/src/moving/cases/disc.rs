@@ -39,10 +39,11 @@ pub struct DiscSweep {
     pub from: f64,
     pub to: f64,
     pub points: usize,
-    /// |d_recovered − μN/(Ω r0)| ≤ this × ε m max|λ| (round-off of the eigenvalues).
+    /// |d_recovered − μN/(Ω r0)| ≤ this × ε m max|λ| (round-off of the eigenvalues); also the
+    /// bound, in units of ε, of the relative difference of the automatic derivative and
+    /// μN/(Ω r0), of |∂F_r/∂r| r0/(μN), and of the two force formulas (a few rounded operations
+    /// each: a square root, a division, two products).
     pub round_off_factor: f64,
-    /// Relative difference of the automatic derivative and μN/(Ω r0), and |∂F_r/∂r| / (μN/r0).
-    pub derivative_tolerance: f64,
 }
 
 impl DiscCase {
@@ -54,11 +55,6 @@ impl DiscCase {
         positive(p, "sweep.from", self.sweep.from)?;
         positive(p, "sweep.to", self.sweep.to)?;
         positive(p, "sweep.round_off_factor", self.sweep.round_off_factor)?;
-        positive(
-            p,
-            "sweep.derivative_tolerance",
-            self.sweep.derivative_tolerance,
-        )?;
         if self.sweep.points < 2 {
             return Err(crate::core::format::invalid(
                 p,
@@ -174,14 +170,14 @@ pub fn run(case: &DiscCase, ctx: &RunContext, report: &mut CaseReport) -> Result
         "exact",
         vec![
             Check::at_most(
-                "max relative |∂F_r/∂ṙ (num-dual) + μN/(Ω r0)|, and |∂F_r/∂r| r0/(μN)",
-                worst_ad,
-                s.derivative_tolerance,
+                "max relative |∂F_r/∂ṙ (num-dual) + μN/(Ω r0)|, and |∂F_r/∂r| r0/(μN), in units of ε",
+                worst_ad / f64::EPSILON,
+                s.round_off_factor,
             ),
             Check::at_most(
-                "the model's F_r(r, ṙ) against the independent one, off the steady state, / μN",
-                worst_force,
-                s.derivative_tolerance,
+                "the model's F_r(r, ṙ) against the independent one, off the steady state, / μN, in units of ε",
+                worst_force / f64::EPSILON,
+                s.round_off_factor,
             ),
         ],
         "F_r = −μN ṙ/sqrt(ṙ² + (Ωr)²) written from v_rel = ṙ e_r − Ω r e_t",

@@ -83,8 +83,9 @@ pub struct MapGrid {
 pub struct MapChecks {
     /// Rows recomputed on one thread.
     pub determinism_rows: usize,
-    /// |max Re λ (kernel) − max Re λ (faer)| ≤ this × max|λ|.
-    pub faer_tolerance: f64,
+    /// |max Re λ (kernel) − max Re λ (faer)| ≤ this × n ε max|λ| (n eigenvalues): two
+    /// backward-stable QR iterations on the same companion matrix.
+    pub faer_round_off: f64,
     /// Points of each verdict (stable, flutter) checked by time integration, drawn among those
     /// with |max Re λ| ≥ `time_min_rate` (near the boundary the leading mode needs runs longer
     /// than 1/(σ₁ − σ₂) to dominate; marginal and near-boundary behaviour is checked in
@@ -118,7 +119,7 @@ impl MapCase {
     /// Checks the numbers of the case.
     pub fn check(&self, p: &Path) -> Result<(), CaseError> {
         positive(p, "map.budget_seconds", self.map.budget_seconds)?;
-        positive(p, "checks.faer_tolerance", self.checks.faer_tolerance)?;
+        positive(p, "checks.faer_round_off", self.checks.faer_round_off)?;
         positive(p, "checks.time_duration", self.checks.time_duration)?;
         if self.map.speeds < 2 || self.map.controls < 2 {
             return Err(crate::core::format::invalid(
@@ -270,8 +271,10 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
     let mut disagree = 0;
     let mut marginal_only = 0;
     let mut worst: f64 = 0.0;
+    // n eigenvalues: the companion order 2 (N + 1)
+    let unit = (2 * (m.modes + 1)) as f64 * f64::EPSILON;
     for (a, r) in map.points.iter().zip(&reference.points) {
-        worst = worst.max((a.max_real_part - r.max_real_part).abs() / r.spectral_scale);
+        worst = worst.max((a.max_real_part - r.max_real_part).abs() / (unit * r.spectral_scale));
         if a.verdict != r.verdict {
             if a.verdict == Verdict::Marginal || r.verdict == Verdict::Marginal {
                 marginal_only += 1;
@@ -289,7 +292,7 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
                 disagree == 0,
                 "0",
             ),
-            Check::at_most("max |Δ max Re λ| / max|λ|", worst, case.checks.faer_tolerance),
+            Check::at_most("max |Δ max Re λ| in units of n ε max|λ|", worst, case.checks.faer_round_off),
         ],
         "the map's eigenvalue-only kernel and faer's dense eigensolver on the same companion matrices",
     ));
@@ -493,7 +496,7 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
         counts: Vec<(&'static str, usize)>,
         faer_disagreements: usize,
         faer_marginal_only: usize,
-        faer_max_difference: f64,
+        faer_max_difference_round_off_units: f64,
         time_checks: &'a [(f64, f64, Verdict, f64, f64)],
         critical_control: &'a [(f64, Vec<f64>)],
         map: &'a StabilityMap,
@@ -513,7 +516,7 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
                 .collect(),
             faer_disagreements: disagree,
             faer_marginal_only: marginal_only,
-            faer_max_difference: worst,
+            faer_max_difference_round_off_units: worst,
             time_checks: &trows,
             critical_control: &crit,
             map: &map,

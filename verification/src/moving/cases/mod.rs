@@ -4,6 +4,7 @@
 
 pub mod disc;
 pub mod extremes;
+pub mod flutter;
 pub mod map;
 pub mod oscillator;
 pub mod penalty;

@@ -29,6 +29,7 @@ use crate::core::gate::RateGate;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
 use crate::exact::moving_string::{string_eigenvalue, OscillatorCharacteristic};
+use crate::moving::bounds::{ceiling_factor, predicted_error};
 use crate::moving::convergence::{rate_gates, Convergence, Level};
 use crate::moving::errors::frequencies;
 use crate::moving::plots::{loci_figures, upper_branches};
@@ -63,9 +64,11 @@ pub struct Nodal {
     pub speed: f64,
     /// The even string modes checked.
     pub modes: Vec<usize>,
-    /// Their residual |F(λ)| relative to |F| at a nearby point, and the discrete eigenvalue's error.
+    /// P1 elements of the discrete eigenvalues reported next to the roots.
     pub elements: usize,
-    pub tolerance: f64,
+    /// |root of F − i nπ(1 − v̄²)| ≤ this × ε |λ|: the secant stops at a step ≤ 4ε|λ|, so the
+    /// root is exact to a few ulps.
+    pub round_off: f64,
 }
 
 /// `[campbell]`.
@@ -77,7 +80,11 @@ pub struct Campbell {
     pub to: f64,
     pub points: usize,
     pub branches: usize,
-    pub exact_tolerance: f64,
+    /// The error model's coarse level: the same sweep with this many P1 elements (ā a node).
+    pub coarse_elements: usize,
+    /// The largest error at `elements` at most this (≤ 3) times the prediction
+    /// E(coarse) · (coarse/elements)² of P1's rate 2.
+    pub ceiling_factor: f64,
 }
 
 impl OscillatorCase {
@@ -97,8 +104,30 @@ impl OscillatorCase {
         for (i, g) in self.gate.iter().enumerate() {
             g.criteria.check(p, &format!("gate[{i}]"))?;
         }
-        positive(p, "nodal.tolerance", self.nodal.tolerance)?;
-        positive(p, "campbell.exact_tolerance", self.campbell.exact_tolerance)?;
+        positive(p, "nodal.round_off", self.nodal.round_off)?;
+        ceiling_factor(p, "campbell.ceiling_factor", self.campbell.ceiling_factor)?;
+        for (field, m) in [
+            ("campbell.elements", self.campbell.elements),
+            ("campbell.coarse_elements", self.campbell.coarse_elements),
+        ] {
+            let x = self.oscillator.position * m as f64;
+            if m < 2 || (x - x.round()).abs() > 1e-9 {
+                return Err(invalid(
+                    p,
+                    field,
+                    m,
+                    "≥ 2 elements with ā a node (ā·M an integer)",
+                ));
+            }
+        }
+        if self.campbell.coarse_elements >= self.campbell.elements {
+            return Err(invalid(
+                p,
+                "campbell.coarse_elements",
+                self.campbell.coarse_elements,
+                "fewer than campbell.elements",
+            ));
+        }
         if self.campbell.points < 3 {
             return Err(invalid(p, "campbell.points", self.campbell.points, ">= 3"));
         }
@@ -182,11 +211,11 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
             .copied()
             .min_by(|a, b| (a - exact).abs().total_cmp(&(b - exact).abs()))
             .unwrap_or(f64::NAN);
-        let root_err = (root - Complex::new(0.0, exact)).norm() / exact;
+        let root_err = (root - Complex::new(0.0, exact)).norm() / (exact * f64::EPSILON);
         checks.push(Check::at_most(
-            &format!("mode {m}: root of F near i·{exact:.6} vs i nπ(1 − v̄²)"),
+            &format!("mode {m}: root of F near i·{exact:.6} vs i nπ(1 − v̄²), in units of ε |λ|"),
             root_err,
-            n.tolerance,
+            n.round_off,
         ));
         nodal_rows.push((m, exact, root.im, nearest));
     }
@@ -200,33 +229,14 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
         "W_n = e^{inπv̄ξ} sin(nπξ) vanishes at ξ = 1/2 for even n: the bushing does not move",
     ));
 
-    // Campbell diagram with tracked branches against the exact roots continued in v̄.
+    // Campbell diagram with tracked branches against the exact roots continued in v̄, with the
+    // ceiling of P1's error model E ∝ h² from the same sweep on the coarse mesh.
     let cb = &case.campbell;
-    let model =
-        MovingStringModel::new(fine(cb.elements), Default::default()).map_err(|e| e.to_string())?;
     let axis = speed_axis(cb.from, cb.to, cb.points)?;
-    let sweep = speed_sweep(&model, &o.data(cb.from, o.position), &axis)?;
-    let chosen = upper_branches(&sweep.branches, cb.branches);
-    // The exact branches are continued in v̄ on their own (secant from the linear extrapolation
-    // of the previous two roots), independently of the discrete tracking.
-    let mut exact_branches: Vec<Vec<f64>> = Vec::new();
-    let mut worst: f64 = 0.0;
-    for &b in &chosen {
-        let mut roots: Vec<Complex<f64>> = Vec::new();
-        for (i, &v) in axis.values.iter().enumerate() {
-            let ch = o.characteristic(v, o.position);
-            let guess = match roots.len() {
-                0 => Complex::new(0.0, sweep.branches.branches[b][0].im),
-                1 => roots[0],
-                k => roots[k - 1] * 2.0 - roots[k - 2],
-            };
-            let root = ch.refine(guess)?;
-            let x: c64 = sweep.branches.branches[b][i];
-            worst = worst.max(((x.im - root.im).abs() + x.re.abs()) / root.norm());
-            roots.push(root);
-        }
-        exact_branches.push(roots.iter().map(|r| r.im).collect());
-    }
+    let (sweep, chosen, exact_branches, worst) =
+        campbell_errors(o, cb.elements, &axis, cb.branches)?;
+    let (_, _, _, coarse) = campbell_errors(o, cb.coarse_elements, &axis, cb.branches)?;
+    let predicted = predicted_error(coarse, cb.coarse_elements as f64, cb.elements as f64, 2.0);
     // The smallest relative gap between neighbouring exact branches: a swapped branch would be
     // off by at least this much.
     let mut min_gap = f64::INFINITY;
@@ -243,11 +253,11 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
         vec![
             Check::at_most(
                 &format!(
-                    "first {} branches (P1, {} elements), v̄ ∈ [{}, {}]: max |λ − λ_exact| / |λ_exact|",
-                    cb.branches, cb.elements, cb.from, cb.to
+                    "first {} branches (P1, {} elements), v̄ ∈ [{}, {}]: max |λ − λ_exact| / |λ_exact| vs {} × the prediction {predicted:.3e} of E ∝ h² from {} elements ({coarse:.3e})",
+                    cb.branches, cb.elements, cb.from, cb.to, cb.ceiling_factor, cb.coarse_elements
                 ),
                 worst,
-                cb.exact_tolerance,
+                cb.ceiling_factor * predicted,
             ),
             Check::at_most(
                 &format!("the same, relative to the smallest gap between exact branches ({min_gap:.3e})"),
@@ -255,7 +265,7 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
                 0.5,
             ),
         ],
-        "the exact roots are continued in v̄ independently of the tracker; a swapped branch would be off by at least the gap between branches",
+        "the exact roots are continued in v̄ independently of the tracker; a swapped branch would be off by at least the gap between branches (hence at most half of it)",
     ));
     let exact_series: Vec<Series> = exact_branches
         .iter()
@@ -316,4 +326,52 @@ pub fn run(case: &OscillatorCase, ctx: &RunContext, report: &mut CaseReport) -> 
             campbell_min_gap: min_gap,
         },
     )
+}
+
+/// The Campbell sweep of P1 with `elements` elements over `axis`: the sweep, its lowest
+/// `branches` tracked branches, the exact roots continued in v̄ on their own (secant from the
+/// linear extrapolation of the previous two roots, independently of the discrete tracking), and
+/// the largest relative distance of the tracked branches from them.
+#[allow(clippy::type_complexity)]
+fn campbell_errors(
+    o: &Oscillator,
+    elements: usize,
+    axis: &contactlab::model::moving::stability_map::GridAxis,
+    branches: usize,
+) -> Result<
+    (
+        contactlab::model::moving::sweep::Sweep,
+        Vec<usize>,
+        Vec<Vec<f64>>,
+        f64,
+    ),
+    String,
+> {
+    let disc = StringDiscretization::FiniteElements {
+        kind: ElementKind::P1,
+        elements,
+    };
+    let model = MovingStringModel::new(disc, Default::default()).map_err(|e| e.to_string())?;
+    let from = axis.values[0];
+    let sweep = speed_sweep(&model, &o.data(from, o.position), axis)?;
+    let chosen = upper_branches(&sweep.branches, branches);
+    let mut exact_branches: Vec<Vec<f64>> = Vec::new();
+    let mut worst: f64 = 0.0;
+    for &b in &chosen {
+        let mut roots: Vec<Complex<f64>> = Vec::new();
+        for (i, &v) in axis.values.iter().enumerate() {
+            let ch = o.characteristic(v, o.position);
+            let guess = match roots.len() {
+                0 => Complex::new(0.0, sweep.branches.branches[b][0].im),
+                1 => roots[0],
+                k => roots[k - 1] * 2.0 - roots[k - 2],
+            };
+            let root = ch.refine(guess)?;
+            let x: c64 = sweep.branches.branches[b][i];
+            worst = worst.max(((x.im - root.im).abs() + x.re.abs()) / root.norm());
+            roots.push(root);
+        }
+        exact_branches.push(roots.iter().map(|r| r.im).collect());
+    }
+    Ok((sweep, chosen, exact_branches, worst))
 }

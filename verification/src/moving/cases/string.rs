@@ -28,8 +28,9 @@ use crate::core::gate::RateGate;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
 use crate::exact::moving_string::{damped_string_eigenvalue, string_eigenvalue};
+use crate::moving::bounds::{ceiling_factor as factor, predicted_error};
 use crate::moving::convergence::{rate_gates, Convergence, Level};
-use crate::moving::errors::{frequencies, relative_real_part};
+use crate::moving::errors::frequencies;
 use crate::moving::plots::{loci_figures, root_locus, upper_branches};
 use crate::moving::study::{speed_axis, speed_sweep, string_eigenvalues, SeriesSelect};
 use crate::plot::Series;
@@ -50,11 +51,13 @@ pub struct StringCase {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Exactness {
-    /// v̄ = 0 with this many sine modes: every frequency exact to `at_rest_tolerance`.
+    /// v̄ = 0 with this many sine modes: every frequency exact to round-off.
     pub at_rest_modes: usize,
-    pub at_rest_tolerance: f64,
-    /// Undamped runs: max |Re λ| / max |λ| at most this.
-    pub real_part_tolerance: f64,
+    /// The round-off bound C of |λ − λ_exact| (at rest) and |Re λ| (undamped runs) in units of
+    /// n ε max |λ|, n the number of eigenvalues: the backward error of the Hessenberg QR is of
+    /// order n ε ‖A‖, and the eigenvalues of a conservative gyroscopic system are well
+    /// conditioned.
+    pub round_off: f64,
 }
 
 /// `[critical]`.
@@ -64,10 +67,12 @@ pub struct Critical {
     pub modes: usize,
     /// δ = 1 − v̄ approaching the critical speed.
     pub approach: Vec<f64>,
-    /// Largest relative error of the first three frequencies along the approach.
-    pub frequency_tolerance: f64,
-    /// At v̄ = 1: eigenvalues with |λ| ≤ this × max |λ| count as zero.
-    pub zero_tolerance: f64,
+    /// The relative error of ω1..ω3 at every δ at most this (≤ 3) times its value at the first
+    /// δ: the error stays bounded as v̄ → 1 (the scaled problem has a limit).
+    pub frequency_factor: f64,
+    /// At v̄ = 1: eigenvalues with |λ| ≤ this × n ε max |λ| count as zero (K = 0: exact zeros,
+    /// moved by round-off only).
+    pub zero_round_off: f64,
     pub supercritical_speeds: Vec<f64>,
     pub damping: f64,
 }
@@ -84,7 +89,11 @@ pub struct Loci {
     pub branches: usize,
     /// Compare for v̄ ≤ this.
     pub compare_up_to: f64,
-    pub exact_tolerance: f64,
+    /// The error model's coarse level: the same sweeps with this many sine functions.
+    pub coarse_modes: usize,
+    /// The largest error at `modes` at most this (≤ 3) times the prediction
+    /// E(coarse) · (coarse/modes)³ of the sine basis's rate 3.
+    pub ceiling_factor: f64,
 }
 
 impl StringCase {
@@ -115,22 +124,22 @@ impl StringCase {
                 ));
             }
         }
-        positive(
+        positive(p, "exactness.round_off", self.exactness.round_off)?;
+        factor(
             p,
-            "exactness.at_rest_tolerance",
-            self.exactness.at_rest_tolerance,
+            "critical.frequency_factor",
+            self.critical.frequency_factor,
         )?;
-        positive(
-            p,
-            "exactness.real_part_tolerance",
-            self.exactness.real_part_tolerance,
-        )?;
-        positive(
-            p,
-            "critical.frequency_tolerance",
-            self.critical.frequency_tolerance,
-        )?;
-        positive(p, "critical.zero_tolerance", self.critical.zero_tolerance)?;
+        positive(p, "critical.zero_round_off", self.critical.zero_round_off)?;
+        factor(p, "loci.ceiling_factor", self.loci.ceiling_factor)?;
+        if !(1..self.loci.modes).contains(&self.loci.coarse_modes) {
+            return Err(invalid(
+                p,
+                "loci.coarse_modes",
+                self.loci.coarse_modes,
+                "between 1 and loci.modes − 1",
+            ));
+        }
         positive(p, "critical.damping", self.critical.damping)?;
         if self.loci.points < 3 || self.loci.branches == 0 {
             return Err(invalid(
@@ -157,7 +166,7 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
     rate_gates(&case.gate, &levels, "frequency error", report)?;
     let worst_re = levels
         .iter()
-        .filter_map(|l| l.max_relative_real_part)
+        .filter_map(|l| l.real_part_round_off)
         .fold(0.0, f64::max);
     // v̄ = 0: the sine functions are the modes.
     let at_rest = string_eigenvalues(
@@ -167,34 +176,42 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
         &MovingStringData::string(0.0, 0.0),
     )?;
     let f0 = frequencies(&at_rest);
+    let unit =
+        at_rest.len() as f64 * f64::EPSILON * at_rest.iter().map(|l| l.norm()).fold(0.0, f64::max);
     let rest_err = f0
         .iter()
         .enumerate()
-        .map(|(k, &w)| (w - string_eigenvalue(k + 1, 0.0)).abs() / string_eigenvalue(k + 1, 0.0))
+        .map(|(k, &w)| (w - string_eigenvalue(k + 1, 0.0)).abs() / unit)
         .fold(0.0, f64::max);
+    let rest_re = at_rest.iter().map(|l| l.re.abs()).fold(0.0, f64::max) / unit;
     report.gates.push(GateVerdict::from_checks(
         "exact values: v̄ = 0 exact, real parts zero".into(),
         "exact",
         vec![
             Check::at_most(
-                &format!("v̄ = 0, N = {}: max relative error of all frequencies", case.exactness.at_rest_modes),
+                &format!(
+                    "v̄ = 0, N = {}: max |ω_k − kπ| in units of n ε max|λ| (n = {})",
+                    case.exactness.at_rest_modes,
+                    at_rest.len()
+                ),
                 rest_err,
-                case.exactness.at_rest_tolerance,
+                case.exactness.round_off,
             ),
             Check::at_most(
-                "undamped runs: max |Re λ| / max |λ| over every level",
-                worst_re.max(relative_real_part(&at_rest)),
-                case.exactness.real_part_tolerance,
+                "undamped runs (every level, and v̄ = 0): max |Re λ| in units of n ε max|λ|",
+                worst_re.max(rest_re),
+                case.exactness.round_off,
             ),
         ],
-        "the sine functions are the modes at rest; a conservative gyroscopic system has its spectrum on the imaginary axis",
+        "the sine functions are the modes at rest; a conservative gyroscopic system has its spectrum on the imaginary axis; both to the backward error of the eigensolver, n ε ‖A‖",
     ));
 
     // The critical speed.
     let cr = &case.critical;
     let disc = StringDiscretization::Sine { modes: cr.modes };
     let mut approach = Vec::new();
-    let mut worst_approach: f64 = 0.0;
+    let mut first: Option<Vec<f64>> = None;
+    let mut worst_ratio: f64 = 0.0;
     for &d in &cr.approach {
         let v = 1.0 - d;
         let ev = string_eigenvalues(disc, &MovingStringData::string(v, 0.0))?;
@@ -202,26 +219,39 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
         let errs: Vec<f64> = (1..=3)
             .map(|k| (f[k - 1] - string_eigenvalue(k, v)).abs() / string_eigenvalue(k, v))
             .collect();
-        worst_approach = errs.iter().copied().fold(worst_approach, f64::max);
+        let base = first.get_or_insert_with(|| errs.clone());
+        for (e, b) in errs.iter().zip(base.iter()) {
+            worst_ratio = worst_ratio.max(e / b);
+        }
         approach.push((d, f[0], string_eigenvalue(1, v), errs));
     }
     let ev1 = string_eigenvalues(disc, &MovingStringData::string(1.0, 0.0))?;
     let rho1 = ev1.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    let zero_unit = ev1.len() as f64 * f64::EPSILON * rho1;
     let zeros = ev1
         .iter()
-        .filter(|l| l.norm() <= cr.zero_tolerance * rho1)
+        .filter(|l| l.norm() <= cr.zero_round_off * zero_unit)
         .count();
     let mut checks = vec![
         Check::at_most(
-            "v̄ = 1 − δ, δ = 1e-1 … 1e-8: max relative error of ω1..ω3 against nπ(1 − v̄²)",
-            worst_approach,
-            cr.frequency_tolerance,
+            &format!(
+                "v̄ = 1 − δ, δ = {:e} … {:e}: relative error of ω1..ω3 against nπ(1 − v̄²), largest ratio to its value at δ = {:e} (first δ: {:.3e}, {:.3e}, {:.3e})",
+                cr.approach[0],
+                cr.approach[cr.approach.len() - 1],
+                cr.approach[0],
+                approach[0].3[0],
+                approach[0].3[1],
+                approach[0].3[2]
+            ),
+            worst_ratio,
+            cr.frequency_factor,
         ),
         Check::holds(
             &format!(
-                "v̄ = 1: {zeros} of {} eigenvalues are zero (|λ| ≤ {:.0e} ρ); expected ≥ N = {}",
+                "v̄ = 1: {zeros} of {} eigenvalues are zero (|λ| ≤ {} n ε max|λ| = {:.2e} max|λ|); expected ≥ N = {}",
                 ev1.len(),
-                cr.zero_tolerance,
+                cr.zero_round_off,
+                cr.zero_round_off * zero_unit / rho1,
                 cr.modes
             ),
             zeros >= cr.modes,
@@ -256,38 +286,32 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
         "K(v̄) = (1 − v̄²)⟨Φ'ᵀ,Φ'⟩ is positive definite below 1, zero at 1, negative definite above",
     ));
 
-    // Loci and Campbell diagram.
+    // Loci and Campbell diagram: the tracked branches at N = `modes` against the exact lines,
+    // with the ceiling of the sine basis's error model E ∝ N⁻³ from the same sweeps at
+    // N = `coarse_modes`.
     let l = &case.loci;
-    let model = MovingStringModel::new(
-        StringDiscretization::Sine { modes: l.modes },
-        Default::default(),
-    )
-    .map_err(|e| e.to_string())?;
     let axis = speed_axis(l.from, l.to, l.points)?;
-    let sweep = speed_sweep(&model, &MovingStringData::string(l.from, 0.0), &axis)?;
-    let chosen = upper_branches(&sweep.branches, l.branches);
-    let mut worst_branch: f64 = 0.0;
-    for (k, &b) in chosen.iter().enumerate() {
-        for (i, &v) in axis.values.iter().enumerate() {
-            if v <= l.compare_up_to {
-                let e = string_eigenvalue(k + 1, v);
-                let x = sweep.branches.branches[b][i];
-                worst_branch = worst_branch.max(((x.im - e).abs() + x.re.abs()) / e);
-            }
-        }
-    }
+    let undamped = |m: usize| loci_errors(m, 0.0, &axis, l, cr.damping);
+    let damped_run = |m: usize| loci_errors(m, cr.damping, &axis, l, cr.damping);
+    let (sweep, chosen, worst_branch) = undamped(l.modes)?;
+    let (_, _, coarse_branch) = undamped(l.coarse_modes)?;
+    let (damped, chosen_d, worst_damped) = damped_run(l.modes)?;
+    let (_, _, coarse_damped) = damped_run(l.coarse_modes)?;
+    let (nf, nc) = (l.modes as f64, l.coarse_modes as f64);
+    let pred_branch = predicted_error(coarse_branch, nc, nf, 3.0);
+    let pred_damped = predicted_error(coarse_damped, nc, nf, 3.0);
     report.gates.push(GateVerdict::from_checks(
         "tracked branches follow nπ(1 − v̄²)".into(),
         "exact",
         vec![Check::at_most(
             &format!(
-                "first {} tracked branches (N = {}), v̄ ≤ {}: max |λ − i nπ(1 − v̄²)| / nπ(1 − v̄²)",
-                l.branches, l.modes, l.compare_up_to
+                "first {} tracked branches (N = {}), v̄ ≤ {}: max |λ − i nπ(1 − v̄²)| / nπ(1 − v̄²) vs {} × the prediction {pred_branch:.3e} of E ∝ N⁻³ from N = {} ({coarse_branch:.3e})",
+                l.branches, l.modes, l.compare_up_to, l.ceiling_factor, l.coarse_modes
             ),
             worst_branch,
-            l.exact_tolerance,
+            l.ceiling_factor * pred_branch,
         )],
-        "the branch tracker (secant predictor + optimal assignment) keeps each mode on its branch",
+        "the branch tracker (secant predictor + optimal assignment) keeps each mode on its branch; a swapped branch would be off by the gap between modes, ≥ 1/(branches) relative",
     ));
     let exact_lines: Vec<Series> = (1..=l.branches)
         .map(|n| {
@@ -308,30 +332,16 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
         &chosen,
         &exact_lines,
     );
-    // The same sweep with damping: every branch crosses Re λ = 0 at v̄ = 1.
-    let damped = speed_sweep(&model, &MovingStringData::string(l.from, cr.damping), &axis)?;
-    let chosen_d = upper_branches(&damped.branches, l.branches);
-    let mut worst_damped: f64 = 0.0;
-    for (k, &b) in chosen_d.iter().enumerate() {
-        for (i, &v) in axis.values.iter().enumerate() {
-            if (1.0 - v).abs() >= 0.02 {
-                let e = damped_string_eigenvalue(k + 1, v, cr.damping);
-                let x = damped.branches.branches[b][i];
-                worst_damped =
-                    worst_damped.max(((x.re - e.re).abs() + (x.im - e.im).abs()) / e.norm());
-            }
-        }
-    }
     report.gates.push(GateVerdict::from_checks(
         format!("damped loci: λ_n = (1 − v̄²)(−ᾱ/2 + i sqrt(n²π² − ᾱ²/4)), ᾱ = {}", cr.damping),
         "exact",
         vec![Check::at_most(
             &format!(
-                "first {} tracked branches, v̄ ∈ [{}, {}] with |1 − v̄| ≥ 0.02: max |λ − λ_n| / |λ_n|",
-                l.branches, l.from, l.to
+                "first {} tracked branches, v̄ ∈ [{}, {}] with |1 − v̄| ≥ 0.02: max |λ − λ_n| / |λ_n| vs {} × the prediction {pred_damped:.3e} of E ∝ N⁻³ from N = {} ({coarse_damped:.3e})",
+                l.branches, l.from, l.to, l.ceiling_factor, l.coarse_modes
             ),
             worst_damped,
-            l.exact_tolerance,
+            l.ceiling_factor * pred_damped,
         )],
         "every branch passes through λ = 0 at v̄ = 1 and its real part −ᾱ(1 − v̄²)/2 turns positive beyond",
     ));
@@ -384,6 +394,8 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
 
     #[derive(Serialize)]
     struct Data<'a> {
+        max_branch_error_coarse: f64,
+        max_damped_branch_error_coarse: f64,
         levels: &'a [Level],
         at_rest_max_error: f64,
         approach: Vec<(f64, f64, f64, Vec<f64>)>,
@@ -404,7 +416,42 @@ pub fn run(case: &StringCase, ctx: &RunContext, report: &mut CaseReport) -> Resu
             zeros_at_critical: zeros,
             supercritical: super_runs,
             max_branch_error: worst_branch,
+            max_branch_error_coarse: coarse_branch,
+            max_damped_branch_error_coarse: coarse_damped,
             max_damped_branch_error: worst_damped,
         },
     )
+}
+
+/// The tracked loci of N = `modes` sine functions over `axis` with damping `damping`, and the
+/// largest relative distance of the first `l.branches` branches from the exact eigenvalues:
+/// undamped (ᾱ = 0) for v̄ ≤ `compare_up_to` against i nπ(1 − v̄²), damped wherever
+/// |1 − v̄| ≥ 0.02 against (1 − v̄²)(−ᾱ/2 + i sqrt(n²π² − ᾱ²/4)).
+fn loci_errors(
+    modes: usize,
+    damping: f64,
+    axis: &contactlab::model::moving::stability_map::GridAxis,
+    l: &Loci,
+    damped_alpha: f64,
+) -> Result<(contactlab::model::moving::sweep::Sweep, Vec<usize>, f64), String> {
+    let model = MovingStringModel::new(StringDiscretization::Sine { modes }, Default::default())
+        .map_err(|e| e.to_string())?;
+    let sweep = speed_sweep(&model, &MovingStringData::string(l.from, damping), axis)?;
+    let chosen = upper_branches(&sweep.branches, l.branches);
+    let mut worst: f64 = 0.0;
+    for (k, &b) in chosen.iter().enumerate() {
+        for (i, &v) in axis.values.iter().enumerate() {
+            let x = sweep.branches.branches[b][i];
+            if damping == 0.0 {
+                if v <= l.compare_up_to {
+                    let e = string_eigenvalue(k + 1, v);
+                    worst = worst.max(((x.im - e).abs() + x.re.abs()) / e);
+                }
+            } else if (1.0 - v).abs() >= 0.02 {
+                let e = damped_string_eigenvalue(k + 1, v, damped_alpha);
+                worst = worst.max(((x.re - e.re).abs() + (x.im - e.im).abs()) / e.norm());
+            }
+        }
+    }
+    Ok((sweep, chosen, worst))
 }

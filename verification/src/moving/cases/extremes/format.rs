@@ -39,10 +39,11 @@ pub struct CriticalSpeed {
 pub struct StiffPenalty {
     pub modes: usize,
     pub penalties: Vec<f64>,
-    /// Series springs against ideal contact with c_eff: relative eigenvalue difference.
-    pub series_tolerance: f64,
-    /// Series springs at the largest k̄_p against ideal contact (c_eff = c̄ to round-off).
-    pub limit_tolerance: f64,
+    /// C of the round-off bound of the series springs against the independent sine-Galerkin
+    /// model (`exact::thick_string_galerkin`) with the spring c_eff = c̄k̄_p/(c̄ + k̄_p) and the
+    /// friction μh̄ c_eff, and at the largest k̄_p against ideal contact (spring c̄): every
+    /// eigenvalue within C κ(λ) (n ε ‖A‖_F + ‖A(c_eff) − A(c̄)‖_F) (`moving::bounds::agreement`).
+    pub series_round_off: f64,
     /// The Schur error's log–log slope against k̄_p must lie within this of 1.
     pub schur_slope_tolerance: f64,
 }
@@ -55,8 +56,9 @@ pub struct Undamped {
     pub points: usize,
     pub speed_range: [f64; 2],
     pub control_range: [f64; 2],
-    /// |Σ Re λ| / (2n max |λ|) at most this.
-    pub trace_tolerance: f64,
+    /// |Σ Re λ| at most this × n ε max |λ| (n eigenvalues): the computed eigenvalues sum to the
+    /// trace of a backward-perturbed matrix.
+    pub trace_round_off: f64,
     /// The same points with this damping (reported: damping can stabilize).
     pub damping: f64,
 }
@@ -79,15 +81,10 @@ impl ExtremesCase {
         self.onset_gate.criteria.check(p, "onset_gate")?;
         positive(
             p,
-            "stiff_penalty.series_tolerance",
-            self.stiff_penalty.series_tolerance,
+            "stiff_penalty.series_round_off",
+            self.stiff_penalty.series_round_off,
         )?;
-        positive(
-            p,
-            "stiff_penalty.limit_tolerance",
-            self.stiff_penalty.limit_tolerance,
-        )?;
-        positive(p, "undamped.trace_tolerance", self.undamped.trace_tolerance)?;
+        positive(p, "undamped.trace_round_off", self.undamped.trace_round_off)?;
         if self.undamped.points == 0 || self.near_defective.distances.len() < 3 {
             return Err(invalid(
                 p,

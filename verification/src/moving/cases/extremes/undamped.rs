@@ -42,7 +42,7 @@ pub(super) fn study(
         let a = assess(&ev, verdict);
         let rho = a.spectral_scale;
         let trace: f64 = ev.iter().map(|l| l.re).sum::<f64>();
-        worst_trace = worst_trace.max(trace.abs() / (ev.len() as f64 * rho));
+        worst_trace = worst_trace.max(trace.abs() / (ev.len() as f64 * f64::EPSILON * rho));
         if a.verdict.is_unstable() {
             unstable += 1;
         }
@@ -64,7 +64,7 @@ pub(super) fn study(
                 unstable == un.points,
                 "all",
             ),
-            Check::at_most("|Σ Re λ| / (2n max|λ|) (= −tr(M⁻¹C) = 0)", worst_trace, un.trace_tolerance),
+            Check::at_most("|Σ Re λ| in units of n ε max|λ| (n eigenvalues; Σ λ = −tr(M⁻¹C) = 0)", worst_trace, un.trace_round_off),
         ],
         &format!("with ᾱ = {} the same points are stable at {stable_damped} of {}: damping, not the gyroscopic terms, can stabilize", un.damping, un.points),
     ));

@@ -40,8 +40,11 @@ pub struct Frictionless {
     pub damping: f64,
     pub modes_checked: usize,
     pub penalties: Vec<f64>,
-    /// Largest relative difference of the three solution paths (QZ on the DAE, Schur, series).
-    pub agreement_tolerance: f64,
+    /// C of the round-off bound of the three solution paths (QZ on the DAE, Schur, series):
+    /// their relative eigenvalue difference at most C n ε (1 + k̄_p/c̄), n the order of the
+    /// uncondensed companion pencil: the backward error n ε of each path, amplified by the
+    /// cancellation of k̄_p against c̄ in the stiffness of the massless coordinate.
+    pub agreement_round_off: f64,
     /// k̄_p up to which the paths are compared (the generic Schur complement loses
     /// log10(k̄_p/c̄) digits; see moving_extremes).
     pub agreement_up_to: f64,
@@ -56,8 +59,6 @@ pub struct Friction {
     pub penalties: Vec<f64>,
     /// The bisection stops at this relative width.
     pub bisection_tolerance: f64,
-    /// |μh̄*_penalty − p*_ideal(c_eff)/c_eff| / μh̄* at most this.
-    pub identity_tolerance: f64,
     /// Fitted log–log slope of the nominal p* against k̄_p (k̄_p ≥ 10 c̄) within this of 1.
     pub nominal_slope_tolerance: f64,
 }
@@ -103,6 +104,11 @@ impl PenaltyCase {
             p,
             "friction.bisection_tolerance",
             self.friction.bisection_tolerance,
+        )?;
+        positive(
+            p,
+            "frictionless.agreement_round_off",
+            self.frictionless.agreement_round_off,
         )?;
         positive(p, "map.friction_factor", self.map.friction_factor)?;
         positive(p, "map.penalty_from", self.map.penalty_from)?;

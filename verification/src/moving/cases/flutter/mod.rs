@@ -1,0 +1,155 @@
+//! `moving_flutter`: the thick string with friction (Hetzler 2009, §4.2.2, (100)–(103)) against
+//! references the program did not compute.
+//!
+//! - **Equal discretization** ([`discrete`]): an independent sine-Galerkin model written in the
+//!   verification crate from the weak form (closed-form integrals, nalgebra's eigensolver). The
+//!   program's matrices, eigenvalues and discrete flutter onsets must equal it to round-off. A
+//!   wrong factor or sign of the gyroscopic term or of the friction work changes the matrices by
+//!   O(1) and the eigenvalues by O(v̄) or O(p).
+//! - **The continuum** ([`continuum`]): the roots of the characteristic function with the jump
+//!   conditions at the bushing. The program's lowest eigenvalues converge to them at the rates of
+//!   the kinked, jumping eigenfunctions, and its onset read from resolved eigenvalues converges
+//!   to the continuum's onset. Flipping the sign of the gyroscopic term alone is invisible
+//!   without friction (λ²M − λG + K is the transpose of λ²M + λG + K when M, K are symmetric), so
+//!   these gates, taken at p > 0, are the ones that see it.
+
+mod continuum;
+mod discrete;
+mod format;
+
+pub use format::FlutterCase;
+
+use serde::Serialize;
+
+use crate::core::context::RunContext;
+use crate::core::report::case_report::CaseReport;
+use crate::plot::{Figure, Series};
+use continuum::{ContinuumLevel, OnsetStudy};
+use discrete::{DiscreteRow, OnsetRow};
+
+/// The (parameter, error) series `basis/set` of the continuum levels.
+fn series<'a>(levels: &'a [ContinuumLevel], basis: &str, set: &str) -> Vec<&'a ContinuumLevel> {
+    levels
+        .iter()
+        .filter(|l| l.basis == basis && l.set == set)
+        .collect()
+}
+
+/// Runs the case.
+pub fn run(case: &FlutterCase, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+    let disc = discrete::study(&case.set, &case.discrete, report)?;
+    let levels = continuum::levels(&case.set, &case.continuum)?;
+    let mut onsets: Vec<OnsetStudy> = Vec::new();
+    let mut checks = Vec::new();
+    for s in &case.set {
+        let (o, c) = continuum::onsets(s, &case.continuum)?;
+        onsets.push(o);
+        checks.push(c);
+    }
+    report.gates.push(continuum::onset_gate(checks));
+    for g in &case.gate {
+        let (basis, set) = g.select.series.split_once('/').unwrap_or(("", ""));
+        let (h, e, what): (Vec<f64>, Vec<f64>, String) = if basis == "onset" {
+            let o = onsets
+                .iter()
+                .find(|o| o.set == set)
+                .ok_or_else(|| format!("gate series {}: no such set", g.select.series))?;
+            (
+                o.program.iter().map(|x| 1.0 / x.0 as f64).collect(),
+                o.program
+                    .iter()
+                    .map(|x| (x.1 - o.onset).abs() / o.onset)
+                    .collect(),
+                format!(
+                    "{set}: resolved sine onset vs the continuum's p* = {:.9}, against 1/N",
+                    o.onset
+                ),
+            )
+        } else {
+            let sel = series(&levels, basis, set);
+            if sel.is_empty() {
+                return Err(format!("gate series {} matches no run", g.select.series));
+            }
+            (
+                sel.iter().map(|l| l.h).collect(),
+                sel.iter().map(|l| l.error).collect(),
+                format!(
+                    "{set}, {basis}: lowest {} eigenvalues at p = {} vs the continuum's roots, against {}",
+                    case.continuum.modes_checked,
+                    case.continuum.control,
+                    if basis == "sine" { "1/N" } else { "h" }
+                ),
+            )
+        };
+        report.gates.push(g.criteria.evaluate(what, &h, &e));
+    }
+    // Figures: eigenvalue convergence per basis, onset convergence.
+    let mut figs = Vec::new();
+    for (basis, label, slope) in [
+        ("sine", "1/N", 1.0),
+        ("p1", "h", 2.0),
+        ("hermite", "h", 1.0),
+    ] {
+        let mut f = Figure::new(format!(
+            "{basis}: lowest {} eigenvalues at p = {} vs the continuum",
+            case.continuum.modes_checked, case.continuum.control
+        ))
+        .x_label(label)
+        .y_label("max relative error")
+        .log_log();
+        for (k, s) in case.set.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = series(&levels, basis, &s.name)
+                .iter()
+                .map(|l| (l.h, l.error))
+                .collect();
+            f = f.series(Series::line_markers(s.name.clone(), pts).color(k));
+        }
+        figs.push(f.reference_slope(slope, format!("slope {slope}")));
+    }
+    let mut fo = Figure::new("flutter onset of N sine functions vs the continuum's p*")
+        .x_label("N")
+        .y_label("p* / p*_continuum")
+        .semilog_x();
+    for (k, o) in onsets.iter().enumerate() {
+        fo = fo
+            .series(
+                Series::line_markers(
+                    format!("{}: resolved eigenvalues", o.set),
+                    o.program.iter().map(|x| (x.0 as f64, x.1 / o.onset)),
+                )
+                .color(k),
+            )
+            .series(
+                Series::line_markers(
+                    format!("{}: every eigenvalue", o.set),
+                    o.program.iter().map(|x| (x.0 as f64, x.2 / o.onset)),
+                )
+                .color(k)
+                .dashed(),
+            );
+    }
+    figs.push(fo.horizontal_line(1.0, "continuum"));
+    ctx.panels(
+        report,
+        "continuum",
+        "The thick string against its continuum: eigenvalue convergence (sine rate 1, P1 rate 2, Hermite rate 1: the eigenfunctions jump at ā) and the flutter onset from resolved eigenvalues",
+        &figs,
+        2,
+    )?;
+    #[derive(Serialize)]
+    struct Data<'a> {
+        discrete: &'a [DiscreteRow],
+        discrete_onsets: &'a [OnsetRow],
+        continuum_levels: &'a [ContinuumLevel],
+        onsets: &'a [OnsetStudy],
+    }
+    ctx.write_data(
+        report,
+        &Data {
+            discrete: &disc.rows,
+            discrete_onsets: &disc.onsets,
+            continuum_levels: &levels,
+            onsets: &onsets,
+        },
+    )
+}
