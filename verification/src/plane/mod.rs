@@ -4,8 +4,8 @@
 //!
 //! | kind | file | what it establishes |
 //! |---|---|---|
-//! | `plane_convergence` | [`cases::convergence`] | rates in h and k against manufactured solutions (energy O(h), L² O(h²), the paper's E O(h + k), time orders by scheme) |
-//! | `plane_paper_test_2d` | [`cases::paper_test_2d`] | the paper's Test 2D under both readings of Γ1, against its Figs 11–15 |
+//! | `plane_convergence` | [`cases::convergence`] | rates in h and k against manufactured solutions whose data come from laws written in this crate (energy O(h), L² O(h²), the paper's E O(h + k); time orders by scheme against a field in V^h, whose error is the time error alone) |
+//! | `plane_paper_test_2d` | [`cases::paper_test_2d`] | the paper's Test 2D under both readings of Γ1: mesh-converged quantities with their GCI set beside Figs 11–15, the rollers' rigid sinking against its closed form |
 //! | `plane_stability` | [`cases::stability`] | the explicit bound k λ_max(A⁻¹B) < 2 |
 //! | `plane_paths` | [`cases::paths`] | the condensed and Newton paths agree; error against cost of both |
 //! | `plane_performance` | [`cases::performance`] | the Test 2D time loop and its cost against the sparse solve |

@@ -1,8 +1,10 @@
 //! A plane study: a manufactured solution with the case's discretization options, and one run of
-//! it at (n × n squares, N steps, scheme) with its errors — including, where asked, the time error
-//! against a run on the same mesh with a much smaller step.
+//! it at (n × n squares, N steps, scheme) with its errors against the exact solution — and, where a
+//! sweep asks, the diagnostic `time_l2_final` against a run of the same code on the same mesh with a
+//! much smaller step (never gated).
 
 use std::collections::BTreeMap;
+use std::path::Path;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use serde::Deserialize;
@@ -12,32 +14,122 @@ use contactlab::model::quasistatic::plane_solver::{PlaneParams, PlaneSolver, Sol
 use contactlab::model::quasistatic::scheme::TimeScheme;
 use contactlab::time::grid::TimeGrid;
 
+use crate::core::format::{invalid, CaseError};
 use crate::core::study::Study;
 use crate::core::sweep::{Level, Measured};
+use crate::manufactured::normal_response::NormalResponse;
 use crate::manufactured::plane::PlaneManufactured;
+use crate::manufactured::plane_fields::PlaneField;
 use contactlab::fem::norms::l2_difference;
 
 use crate::plane::errors::PlaneErrorObserver;
 
-/// `[exact]`: the manufactured solution of a plane case (`plane_manufactured_linear`,
-/// `plane_manufactured_nonlinear`, `plane_manufactured_strain`), on n × n squares of the unit
-/// square.
+/// `[exact]`: the manufactured solution of a plane case on n × n squares of the unit square: its
+/// materials and foundation (`plane_manufactured_linear`, `plane_manufactured_nonlinear`,
+/// `plane_manufactured_strain`) and its displacement field (`switching`, the default, or
+/// `affine` with its `switch_time`; `manufactured/plane_fields.rs`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExactSpec {
     pub solution: String,
+    #[serde(default)]
+    pub field: FieldKind,
+    /// t* of the affine field, in (0, T).
+    pub switch_time: Option<f64>,
+    /// The foundation law on Γ3: `lubricated` (2.8), the default, or `linear` (2.7).
+    #[serde(default)]
+    pub law: LawKind,
+    /// β of the law (default 5; ≥ 0).
+    pub beta: Option<f64>,
+}
+
+/// The foundation law of `[exact]`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LawKind {
+    /// (2.8) β r_+ + p0 with the solution's p0.
+    #[default]
+    Lubricated,
+    /// (2.7) β r.
+    Linear,
+}
+
+/// The displacement field of `[exact]`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FieldKind {
+    #[default]
+    Switching,
+    Affine,
 }
 
 impl ExactSpec {
+    /// The manufactured solution it names, or the field of `[exact]` that is wrong with the value
+    /// found and what was expected.
+    fn resolve(&self) -> Result<PlaneManufactured, (&'static str, String, String)> {
+        let base = PlaneManufactured::by_name(&self.solution).ok_or_else(|| {
+            (
+                "exact.solution",
+                self.solution.clone(),
+                "plane_manufactured_linear, plane_manufactured_nonlinear or \
+                 plane_manufactured_strain"
+                    .to_string(),
+            )
+        })?;
+        let final_time = base.final_time;
+        let field = match (self.field, self.switch_time) {
+            (FieldKind::Switching, None) => PlaneField::Switching,
+            (FieldKind::Switching, Some(t)) => {
+                return Err((
+                    "exact.switch_time",
+                    t.to_string(),
+                    "no switch_time for the switching field (only for field = \"affine\")"
+                        .to_string(),
+                ))
+            }
+            (FieldKind::Affine, Some(t)) if t.is_finite() && t > 0.0 && t < final_time => {
+                PlaneField::Affine { switch_time: t }
+            }
+            (FieldKind::Affine, t) => {
+                return Err((
+                    "exact.switch_time",
+                    t.map_or("(missing)".to_string(), |t| t.to_string()),
+                    format!("a time in (0, {final_time}) for the affine field"),
+                ))
+            }
+        };
+        let beta = match (self.beta, base.foundation) {
+            (None, NormalResponse::Lubricated { beta, .. }) => beta,
+            (Some(b), _) if b.is_finite() && b >= 0.0 => b,
+            (b, _) => {
+                return Err((
+                    "exact.beta",
+                    b.map_or("(missing)".to_string(), |b| b.to_string()),
+                    "a finite number ≥ 0".to_string(),
+                ))
+            }
+        };
+        let p0 = match base.foundation {
+            NormalResponse::Lubricated { p0, .. } => p0,
+            _ => 0.0,
+        };
+        let foundation = match self.law {
+            LawKind::Lubricated => NormalResponse::Lubricated { beta, p0 },
+            LawKind::Linear => NormalResponse::Linear { beta },
+        };
+        Ok(base.with_field(field).with_foundation(foundation))
+    }
+
     /// The manufactured solution it names.
     pub fn manufactured(&self) -> Result<PlaneManufactured, String> {
-        PlaneManufactured::by_name(&self.solution).ok_or_else(|| {
-            format!(
-                "exact solution `{}`: unknown; known: plane_manufactured_linear, \
-                 plane_manufactured_nonlinear, plane_manufactured_strain",
-                self.solution
-            )
-        })
+        self.resolve()
+            .map_err(|(field, value, expected)| format!("{field} = {value}: expected {expected}"))
+    }
+
+    /// Checks `[exact]` of the case file at `path`, naming the wrong field.
+    pub fn check(&self, path: &Path) -> Result<PlaneManufactured, CaseError> {
+        self.resolve()
+            .map_err(|(field, value, expected)| invalid(path, field, value, &expected))
     }
 }
 
@@ -124,7 +216,7 @@ impl PlaneStudy {
         steps: usize,
         scheme: TimeScheme,
     ) -> Result<PlaneSolver, String> {
-        let problem = self.exact.problem(divisions, self.integration);
+        let problem = self.exact.problem(divisions, self.integration)?;
         plane_solver(&problem, steps, scheme, self.path)
     }
 

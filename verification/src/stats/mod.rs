@@ -24,10 +24,14 @@
 //!   s² = S(θ*) / (n − 4),  CI(θ_j) = θ*_j ± t_{(1+γ)/2, n−4} · sqrt(s² [(JᵀJ)⁻¹]_jj)
 //!   ```
 //!
+//! * [`gci`] — Roache's grid convergence index of a scalar on systematically refined levels
+//!   (observed order, Richardson extrapolation, the error band of the finest level).
+//!
 //! Both report failures through the shared typed error [`FitError`]; nothing in this module
 //! panics on bad input.
 
 pub mod error_model;
+pub mod gci;
 pub mod lcg;
 pub mod levels;
 pub mod rate_fit;

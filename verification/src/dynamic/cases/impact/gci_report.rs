@@ -1,11 +1,11 @@
 //! The gate and the tables of a self-convergence study of `dynamic_impact`: the grid
 //! convergence index of the finest pair and the asymptotic ratio, per quantity.
 
-use super::gci::GciResult;
 use super::runs::{RunOutput, RunSummary};
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::Table;
 use crate::dynamic::cases::impact::format::{GciGate, Quantity};
+use crate::stats::gci::GciResult;
 
 /// The gate of one GCI quantity.
 pub(crate) fn gci_gate(

@@ -22,10 +22,9 @@
 //! - every run separates before T (rebound and contact duration defined);
 //! - cost: each run's time loop at the report's resolution within `budget_seconds`;
 //! - self-convergence: GCI of the finest pair below a percentage, and the asymptotic ratio of
-//!   [`gci`] within a tolerance (four levels or more).
+//!   [`crate::stats::gci`] within a tolerance (four levels or more).
 
 pub mod format;
-pub mod gci;
 pub mod gci_report;
 pub mod plots;
 pub mod report;

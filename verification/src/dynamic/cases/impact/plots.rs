@@ -1,9 +1,9 @@
 //! The figures of an impact case: contact-force, penetration and centre-of-mass velocity
 //! histories per run, deformed snapshots, and the self-convergence of the reported quantities.
 
-use super::gci::GciResult;
 use super::runs::RunOutput;
 use crate::plot::{Figure, Outline, Series, TriangleField, TriangleMeshPlot};
+use crate::stats::gci::GciResult;
 
 /// A labelled run.
 pub struct Labelled<'a> {

@@ -10,7 +10,6 @@ use contactlab::scene::dynamic::DynamicSceneFile;
 
 use crate::dynamic::study::{audit_checks, audit_gate, plot_audits, AuditRun, ROUND_OFF_LEVEL};
 
-use super::gci::{analyse, GciResult};
 use super::plots::{
     contact_force_figure, gci_figures, penetration_figure, snapshot_plots, velocity_figures,
     Labelled,
@@ -23,6 +22,7 @@ use crate::dynamic::cases::impact::format::{
     refinement_ratio, GciStudy, ImpactCase, ImpactRun, Quantity,
 };
 use crate::dynamic::cases::impact::gci_report::{gci_gate, gci_table, levels_table};
+use crate::stats::gci::{analyse, GciResult};
 
 /// One run in `data.json`: its job, summary or error, and its history.
 #[derive(Debug, Serialize)]
