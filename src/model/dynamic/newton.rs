@@ -121,9 +121,16 @@ pub struct NodeForces {
     /// T per weight (friction).
     pub tangential: f64,
     /// Generalized contact forces on the normal and tangential unknowns (the tilt of (3.69)
-    /// included), friction excluded.
+    /// included), friction excluded: the compliance force plus the multiplier's −s w λ e_ν.
     pub force_nd: f64,
     pub force_td: f64,
+    /// The compliance force alone on the normal and tangential unknowns (the tilt of (3.69)
+    /// included; 0 for Signorini).
+    pub compliance_nd: f64,
+    pub compliance_td: f64,
+    /// λ per weight: the multiplier of the unilateral constraint (Signorini, stage (b) of the
+    /// IPM), the reaction of its eliminated row; 0 where no constraint acts.
+    pub multiplier: f64,
     /// Generalized friction force on the tangential unknown.
     pub friction_td: f64,
 }
@@ -135,6 +142,8 @@ pub struct NewtonStats {
     pub backtracks: usize,
     /// Final ‖R‖_∞ / s.
     pub residual: f64,
+    /// Final ‖R‖_∞ (absolute; the rows of prescribed increments excluded).
+    pub residual_norm: f64,
     pub active: usize,
     pub sticking: usize,
     pub sliding: usize,
@@ -390,6 +399,7 @@ pub fn solve_stage(
         }
         let relative = norm / scale;
         stats.residual = relative;
+        stats.residual_norm = norm;
         // line search (no sets): insist on decrease of ‖R‖₂
         if !has_sets
             && iteration > 0
@@ -487,6 +497,8 @@ pub fn solve_stage(
                 };
                 state[i].lambda = lam;
                 f.normal = force + lam;
+                f.multiplier = lam;
+                f.compliance_nd = -node.sign * w * force;
                 f.force_nd = -node.sign * w * f.normal;
             }
             NodeLaw::Tilted { r } => {
@@ -495,11 +507,14 @@ pub fn solve_stage(
                 f.normal = lam;
                 f.force_nd = fn_;
                 f.force_td = ft;
+                f.compliance_nd = fn_;
+                f.compliance_td = ft;
             }
             law => {
                 let (v, _) = compliance(law, node.q, p).unwrap_or((0.0, 0.0));
                 f.normal = v;
                 f.force_nd = -node.sign * w * v;
+                f.compliance_nd = f.force_nd;
             }
         }
         if let (Some(_), Some(t)) = (node.friction, node.td) {

@@ -13,8 +13,8 @@ use serde::Serialize;
 
 use crate::contact::compliance::penalty;
 use crate::error::{require_positive, Error, InputError, SolveError};
-use crate::model::dynamic::audit::{AuditRecord, EnergyAudit};
-use crate::model::dynamic::body::ElasticBody;
+use crate::model::dynamic::audit::{AuditRecord, EnergyAudit, NodeStep, StepInput};
+use crate::model::dynamic::body::{stiffness_at_rest, ElasticBody};
 use crate::model::dynamic::contact_model::{ContactModel, NormalTreatment};
 use crate::model::dynamic::newton::{
     solve_stage, NewtonParams, NewtonWorkspace, NodeForces, NodeLaw, NodeState, StageNode, StepAt,
@@ -261,6 +261,7 @@ impl DynamicSolver {
                 p: q[i],
                 normal: nf,
                 force_nd: -nd.sign * nd.weight * nf,
+                compliance_nd: -nd.sign * nd.weight * nf,
                 ..Default::default()
             };
         }
@@ -284,32 +285,53 @@ impl DynamicSolver {
             mchol.solve_in_place(&mut rhs, &mut mws);
             a.copy_from_slice(&rhs);
         }
-        let mut audit = EnergyAudit::default();
+        let mut audit = EnergyAudit {
+            dofs: n,
+            ..Default::default()
+        };
+        // ‖K‖_∞ of the stiffness at rest: the round-off scale of the internal force (`audit`)
+        let stiffness_norm = {
+            let abs: Vec<f64> = stiffness_at_rest(body.as_ref())
+                .iter()
+                .map(|v| v.abs())
+                .collect();
+            let mut rows = vec![0.0; n];
+            pattern.symmetric_mul(&abs, &vec![1.0; n], &mut rows);
+            rows.iter().fold(0.0, |m: f64, v| m.max(*v))
+        };
+        let norm = |x: &[f64]| x.iter().map(|v| v * v).sum::<f64>().sqrt();
         let kinetic = |v: &[f64], mv: &mut [f64]| {
             pattern.symmetric_mul(body.mass(), v, mv);
             0.5 * v.iter().zip(mv.iter()).map(|(x, y)| x * y).sum::<f64>()
         };
-        let penalty_energy = |p: &[f64]| -> Vec<f64> {
+        // the audit's penetrations p = o + s u_ν, from the displacements (docs of `audit`)
+        let stiffness = treatment.and_then(|t| t.stiffness());
+        let penetrations = |u: &[f64]| -> Vec<f64> {
             nodes
                 .iter()
-                .zip(p)
-                .map(|(nd, &p)| nd.weight * treatment.map_or(0.0, |t| t.penalty_energy(p)))
+                .map(|nd| nd.offset + nd.sign * u[nd.normal_dof])
                 .collect()
         };
-        let mut phi_nodes = penalty_energy(&q);
+        let mut p_audit = penetrations(&u);
+        let mut audit_nodes: Vec<NodeStep> = nodes
+            .iter()
+            .zip(&p_audit)
+            .map(|(nd, &p)| NodeStep {
+                weight: nd.weight,
+                sign: nd.sign,
+                stiffness,
+                penetration: [p, p],
+                ..Default::default()
+            })
+            .collect();
         let mut rec = AuditRecord {
-            step: 0,
-            time: 0.0,
-            kinetic: kinetic(&v, &mut mv),
-            elastic: body.stored_energy(&u),
-            penalty: phi_nodes.iter().sum(),
             contact_force: forces_prev
                 .iter()
                 .zip(nodes)
                 .map(|(f, nd)| nd.weight * f.normal)
                 .sum(),
             max_penetration: q.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            ..Default::default()
+            ..AuditRecord::initial(kinetic(&v, &mut mv), body.stored_energy(&u), &audit_nodes)
         };
         if nodes.is_empty() {
             rec.max_penetration = 0.0;
@@ -420,6 +442,7 @@ impl DynamicSolver {
             // while stage (b) pushes further nodes past g
             let mut iterations = 0;
             let mut stage_b = false;
+            let mut residual_norm;
             loop {
                 let s = solve_stage(
                     op_ref,
@@ -432,6 +455,7 @@ impl DynamicSolver {
                     at,
                 )?;
                 iterations += s.iterations;
+                residual_norm = s.residual_norm;
                 stats.backtracks += s.backtracks;
                 stats.max_newton_residual = stats.max_newton_residual.max(s.residual);
                 let Some(NormalTreatment::LimitedPenetration { stiffness, depth }) = treatment
@@ -490,62 +514,40 @@ impl DynamicSolver {
                     }
                 }
             }
-            // audit
+            // audit: the forces applied over the step (Newmark: the trapezoidal mean), the
+            // penetrations from the displacements
             let prev = *audit.records.last().unwrap_or(&AuditRecord::default());
-            let ext_force: Vec<f64>;
             let w_ext = if scheme == DynamicScheme::Newmark {
-                ext_force = f_prev
-                    .iter()
-                    .zip(&f_now)
-                    .map(|(x, y)| 0.5 * (x + y))
-                    .collect();
-                d.iter().zip(&ext_force).map(|(x, y)| x * y).sum::<f64>()
+                d.iter()
+                    .zip(f_prev.iter().zip(&f_now))
+                    .map(|(x, (a, b))| x * 0.5 * (a + b))
+                    .sum::<f64>()
             } else {
                 d.iter().zip(&f_now).map(|(x, y)| x * y).sum::<f64>()
             };
-            let p_now: Vec<f64> = forces.iter().map(|f| f.p).collect();
-            let phi_new = penalty_energy(&p_now);
-            let (mut w_c, mut w_f, mut d_b, mut r_37) = (0.0, 0.0, 0.0, 0.0);
-            for (i, nd) in nodes.iter().enumerate() {
-                let avg = |now: f64, before: f64| {
-                    if scheme == DynamicScheme::Newmark {
-                        0.5 * (now + before)
-                    } else {
-                        now
-                    }
-                };
-                let dn = d[nd.normal_dof];
-                let dt = nd.tangent_dof.map_or(0.0, |t| d[t]);
-                let w_node = avg(forces[i].force_nd, forces_prev[i].force_nd) * dn
-                    + avg(forces[i].force_td, forces_prev[i].force_td) * dt;
-                w_c += w_node;
-                w_f += avg(forces[i].friction_td, forces_prev[i].friction_td) * dt;
-                let conservative = w_node + (phi_new[i] - phi_nodes[i]);
-                if matches!(stage_nodes[i].law, NodeLaw::Constrained { .. }) {
-                    d_b += conservative;
+            let p_now = penetrations(&u);
+            let avg = |now: f64, before: f64| {
+                if scheme == DynamicScheme::Newmark {
+                    0.5 * (now + before)
                 } else {
-                    r_37 += conservative;
+                    now
                 }
+            };
+            for (i, nd) in nodes.iter().enumerate() {
+                let (f, b) = (&forces[i], &forces_prev[i]);
+                audit_nodes[i] = NodeStep {
+                    penetration: [p_audit[i], p_now[i]],
+                    increment: [d[nd.normal_dof], nd.tangent_dof.map_or(0.0, |t| d[t])],
+                    compliance: [
+                        avg(f.compliance_nd, b.compliance_nd),
+                        avg(f.compliance_td, b.compliance_td),
+                    ],
+                    multiplier: avg(f.multiplier, b.multiplier),
+                    friction: avg(f.friction_td, b.friction_td),
+                    ..audit_nodes[i]
+                };
             }
-            let kin = kinetic(&v, &mut mv);
-            let el = body.stored_energy(&u);
-            let pen: f64 = phi_new.iter().sum();
-            let de = (kin + el) - prev.energy();
             let rec = AuditRecord {
-                step,
-                time: t,
-                kinetic: kin,
-                elastic: el,
-                penalty: pen,
-                external_work: prev.external_work + w_ext,
-                contact_work: prev.contact_work + w_c,
-                friction_work: prev.friction_work + w_f,
-                constraint_work: prev.constraint_work + d_b,
-                step_friction_work: w_f,
-                step_constraint_work: d_b,
-                residual_1_48: de - w_ext - w_c - w_f,
-                residual_1_49: de + (pen - prev.penalty) - w_ext - w_f - d_b,
-                residual_3_7: r_37,
                 contact_force: forces
                     .iter()
                     .zip(nodes)
@@ -556,7 +558,7 @@ impl DynamicSolver {
                     .zip(nodes)
                     .map(|(f, nd)| nd.weight * f.tangential)
                     .sum(),
-                max_penetration: p_now.iter().copied().fold(
+                max_penetration: forces.iter().map(|f| f.p).fold(
                     if nodes.is_empty() {
                         0.0
                     } else {
@@ -571,6 +573,16 @@ impl DynamicSolver {
                     .zip(&stage_nodes)
                     .filter(|(s, sn)| s.active && matches!(sn.law, NodeLaw::Constrained { .. }))
                     .count(),
+                ..prev.after(&StepInput {
+                    step,
+                    time: t,
+                    kinetic: kinetic(&v, &mut mv),
+                    elastic: body.stored_energy(&u),
+                    external_work: w_ext,
+                    stiffness_work: stiffness_norm * norm(&u) * norm(&d),
+                    newton_work: d_op.iter().map(|x| x.abs()).sum::<f64>() * residual_norm,
+                    nodes: &audit_nodes,
+                })
             };
             if !(rec.kinetic.is_finite() && rec.elastic.is_finite()) {
                 return Err(SolveError::NonFinite {
@@ -585,8 +597,10 @@ impl DynamicSolver {
             audit.records.push(rec);
             stats.newton_iterations += iterations;
             stats.max_newton_iterations = stats.max_newton_iterations.max(iterations);
-            q.copy_from_slice(&p_now);
-            phi_nodes = phi_new;
+            for (qi, f) in q.iter_mut().zip(forces.iter()) {
+                *qi = f.p;
+            }
+            p_audit = p_now;
             forces_prev.copy_from_slice(&forces);
             std::mem::swap(&mut f_prev, &mut f_now);
             if !load_varies {

@@ -296,7 +296,7 @@ fn summary_text(scene: &DynamicScene, source: &str, run: &RecordedRun, s: &Audit
     format!(
         "{source}: {}; {} scheme, {} path, {} of {} steps (k = {:.4e}): E_0 = {:.6e}, E_N = {:.6e}, \
          (E + Φ)_N − (E + Φ)_0 = {:.4e}, external work {:.4e}{contact}; largest identity \
-         residuals |r|/E_ref: (1.48) {:.2e}, (1.49) {:.2e}, HLT 3.7 {:.2e}; {iterations} Newton \
+         drifts |R_n|/E_ref: (1.48) {:.2e}, (1.49) {:.2e}, HLT 3.7 {:.2e}; {iterations} Newton \
          iterations (max {max_it} per step), {} backtracks, {} factorizations, loop {:.3} s",
         scene.problem.body.describe(),
         scene.problem.scheme.name(),
@@ -308,9 +308,9 @@ fn summary_text(scene: &DynamicScene, source: &str, run: &RecordedRun, s: &Audit
         last.energy(),
         (last.energy() + last.penalty) - (first.energy() + first.penalty),
         last.external_work,
-        s.max_residual_1_48,
-        s.max_residual_1_49,
-        s.max_residual_3_7,
+        s.max_drift_1_48,
+        s.max_drift_1_49,
+        s.max_drift_3_7,
         stats.backtracks,
         stats.factorizations,
         stats.loop_seconds,

@@ -149,12 +149,15 @@ impl FamilySpec {
     }
 
     /// The identities the audit gates at round-off: the balance (1.48) holds for every linear
-    /// run (midpoint type, and Newmark with the trapezoidal mean of the forces); the contact
-    /// identities (1.49) and HLT 3.7 only for an energy-consistent force.
+    /// run (midpoint type, and Newmark with the trapezoidal mean of the forces); HLT 3.7 and
+    /// (1.49) for an energy-consistent compliance force (Signorini has none: its (3.7) residual
+    /// is identically zero and its (1.49) is (1.48)).
     pub fn conserving(&self) -> Conserving {
+        let compliance = self.treatment.has_stiffness();
         Conserving {
             balance: true,
-            contact: self.treatment.is_energy_consistent(),
+            contact: !compliance || self.treatment.is_energy_consistent(),
+            compliance,
         }
     }
 

@@ -305,32 +305,10 @@ pub fn ceiling_gates(ceilings: &[CeilingGate], outcomes: &[SweepOutcome]) -> Vec
 /// The audit gate of each family over every run of every sweep: the worst residuals and step
 /// works of its runs (each relative to its own run's energy scale).
 pub fn worst_summary(outcomes: &[SweepOutcome], family: &str) -> Option<AuditSummary> {
-    let mut worst: Option<AuditSummary> = None;
-    for l in outcomes
+    outcomes
         .iter()
         .filter(|o| o.family == family)
         .flat_map(|o| &o.levels)
-    {
-        let s = l.summary;
-        worst = Some(match worst {
-            None => s,
-            Some(w) => AuditSummary {
-                energy_scale: w.energy_scale.min(s.energy_scale),
-                max_residual_1_48: w.max_residual_1_48.max(s.max_residual_1_48),
-                max_residual_1_49: w.max_residual_1_49.max(s.max_residual_1_49),
-                max_residual_3_7: w.max_residual_3_7.max(s.max_residual_3_7),
-                max_step_friction_work: w.max_step_friction_work.max(s.max_step_friction_work),
-                max_step_constraint_work: w
-                    .max_step_constraint_work
-                    .max(s.max_step_constraint_work),
-                drift_1_49: if s.drift_1_49.abs() > w.drift_1_49.abs() {
-                    s.drift_1_49
-                } else {
-                    w.drift_1_49
-                },
-                steps: w.steps.max(s.steps),
-            },
-        });
-    }
-    worst
+        .map(|l| l.summary)
+        .reduce(|a, s| a.worst(&s))
 }

@@ -8,7 +8,7 @@ use contactlab::model::dynamic::record::Conserving;
 use contactlab::model::dynamic::scheme::DynamicScheme;
 use contactlab::scene::dynamic::DynamicSceneFile;
 
-use crate::dynamic::study::{audit_checks, audit_gate, plot_audits, AuditRun, ROUND_OFF_LEVEL};
+use crate::dynamic::study::{audit_checks, audit_gate, plot_audits, AuditRun};
 
 use super::plots::{
     contact_force_figure, gci_figures, penetration_figure, snapshot_plots, velocity_figures,
@@ -76,9 +76,11 @@ impl CaseData<'_> {
         let linear = self.file.material.law == "linear";
         let balance = job.scheme == DynamicScheme::Gonzalez
             || (job.scheme == DynamicScheme::Midpoint && linear);
+        let compliance = job.treatment != Treatment::Signorini;
         Conserving {
             balance,
-            contact: balance && job.treatment.is_energy_consistent(),
+            contact: !compliance || job.treatment.is_energy_consistent(),
+            compliance,
         }
     }
 
@@ -117,7 +119,7 @@ impl CaseData<'_> {
                 checks.retain(|c| !c.name.contains("friction work"));
                 "Newmark: residuals plotted; its friction work, the mean of the t_{n−1} and t_n \
                  forces times the slip increment, has no sign (not gated, see the runs table)"
-            } else if conserving.contact {
+            } else if conserving.total() {
                 "conserving scheme with an energy-consistent force: identities at round-off"
             } else if conserving.balance {
                 "conserving scheme, contact force without exact work: (1.48) at round-off"
@@ -144,12 +146,15 @@ impl CaseData<'_> {
                 s.momentum_drift,
                 self.case.momentum_tolerance,
             ));
-            if conserving.contact {
-                let steps = audit.steps.max(1) as f64;
+            if conserving.total() {
                 energy.push(Check::at_most(
-                    &format!("{label}: |(E + Φ)_N − (E + Φ)_0 − W_τ − D_b| / E_ref over the run"),
+                    &format!(
+                        "{label}: |(E + Φ)_N − (E + Φ)_0 − W_τ − D_b| / E_ref over the run \
+                         (C ε √N, N = {})",
+                        audit.steps
+                    ),
                     audit.drift_1_49.abs() / audit.energy_scale,
-                    steps * ROUND_OFF_LEVEL,
+                    audit.tolerance(),
                 ));
                 if self.frictionless() && out.job.treatment == Treatment::LimitedPenetration {
                     if let Some(max_loss) = self.case.max_stage_b_loss {

@@ -28,29 +28,11 @@ pub(crate) struct RateSeries {
     pub(crate) error: Vec<f64>,
 }
 
-/// The worst audit summary over runs (largest residuals and step works).
+/// The worst audit summary over runs (largest residuals, drifts and step works).
 pub(crate) fn worst(summaries: impl Iterator<Item = AuditSummary>) -> AuditSummary {
-    summaries.fold(
-        AuditSummary {
-            max_step_friction_work: f64::NEG_INFINITY,
-            max_step_constraint_work: f64::NEG_INFINITY,
-            ..Default::default()
-        },
-        |a, s| AuditSummary {
-            energy_scale: a.energy_scale.max(s.energy_scale),
-            max_residual_1_48: a.max_residual_1_48.max(s.max_residual_1_48),
-            max_residual_1_49: a.max_residual_1_49.max(s.max_residual_1_49),
-            max_residual_3_7: a.max_residual_3_7.max(s.max_residual_3_7),
-            max_step_friction_work: a.max_step_friction_work.max(s.max_step_friction_work),
-            max_step_constraint_work: a.max_step_constraint_work.max(s.max_step_constraint_work),
-            drift_1_49: if a.drift_1_49.abs() > s.drift_1_49.abs() {
-                a.drift_1_49
-            } else {
-                s.drift_1_49
-            },
-            steps: a.steps.max(s.steps),
-        },
-    )
+    summaries
+        .reduce(|a, s| a.worst(&s))
+        .unwrap_or_default()
 }
 
 /// Per-step cost and Newton statistics of a run.
