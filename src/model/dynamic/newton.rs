@@ -17,6 +17,15 @@
 //! unsymmetric), so with friction Newton converges linearly near the solution — the statistics
 //! show it.
 //!
+//! A sliding node whose update would reverse its slide (T = −b → +b or back) is put in stick
+//! instead: the solution then lies between the two slide states, and c_τ, the Jacobian's
+//! diagonal, includes the body's stiffness, which for a stiff body far exceeds the stiffness of
+//! its rigid sliding motion (α times its mass), so the plain update jumps over the stick state
+//! and cycles between ±b — at the stop of a sliding block the method did not converge in 60
+//! iterations whatever the mesh (`verification/cases/dynamic_friction*.toml`). From stick the
+//! reaction decides: within the bound the node stays, beyond it the node slides in the direction
+//! the reaction points.
+//!
 //! Convergence: the active sets did not change and ‖R‖_∞ ≤ tol · s, s the largest term of R (its
 //! round-off scale). Without constraints a backtracking line search on ‖R‖₂ globalizes the
 //! iteration; an inadmissible state (det F ≤ 0) is also cut back. Failures are typed errors with
@@ -335,8 +344,11 @@ pub fn solve_stage(
                 };
                 let c = op.diagonal(t) / w;
                 let z = tang - c * d[t];
-                let stick = bound > 0.0 && z.abs() <= bound;
                 let dir = if z >= 0.0 { 1.0 } else { -1.0 };
+                // a sliding node whose slide would reverse is put in stick first: the solution
+                // lies between the two slide states (see the module docs)
+                let reverses = !state[i].stick && state[i].dir != 0.0 && dir != state[i].dir;
+                let stick = bound > 0.0 && (z.abs() <= bound || reverses);
                 changed |= stick != state[i].stick || (!stick && dir != state[i].dir);
                 ws.new_state[i].stick = stick;
                 ws.new_state[i].dir = dir;

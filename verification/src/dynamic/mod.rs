@@ -11,6 +11,7 @@
 //! | `dynamic_impact` | [`cases::impact`] | BDS §1.7.1–1.7.2 impacts: identities per step, friction and stage-(b) work, grid convergence |
 //! | `dynamic_extremes` | [`cases::extremes`] | blow-up of the midpoint rule, penalty 1 … 1e14, impact speeds, large steps |
 //! | `dynamic_performance` | [`cases::performance`] | cost per step against dofs on both solver paths, the ring impact's time |
+//! | `dynamic_friction` | [`cases::friction`] | Coulomb friction in size: a sliding block against its closed form (rates in k, the stop), a loaded block's step equations and momentum invariant |
 //!
 //! [`study`] holds what every kind shares: the audited run, its plots and gates.
 
@@ -45,6 +46,7 @@ impl Family for Dynamic {
             "dynamic_impact",
             "dynamic_extremes",
             "dynamic_performance",
+            "dynamic_friction",
         ]
     }
 
@@ -56,6 +58,7 @@ impl Family for Dynamic {
             "dynamic_impact" => cases::impact::check(case),
             "dynamic_extremes" => cases::extremes::check(case),
             "dynamic_performance" => cases::performance::check(case),
+            "dynamic_friction" => cases::friction::check(case),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -68,6 +71,7 @@ impl Family for Dynamic {
             "dynamic_impact" => cases::impact::run(case, ctx, report),
             "dynamic_extremes" => cases::extremes::run(case, ctx, report),
             "dynamic_performance" => cases::performance::run(case, ctx, report),
+            "dynamic_friction" => cases::friction::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

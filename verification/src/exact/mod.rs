@@ -5,16 +5,22 @@
 //! - `rod_paper`: the paper's (4.6) and (4.7) written out literally, to check the family against.
 //! - `signorini_bar`: the exact 1D benchmarks of dynamic contact (periodic Signorini bar, free bar
 //!   hitting a rigid wall; docs/dynamic.md §5).
+//! - `coulomb_friction`, `sliding_block`, `loaded_block`: the friction benchmarks (BDS (1.8),
+//!   (1.12)–(1.13), (1.46); docs/dynamic.md §6): the laws written out, the block that slides to a
+//!   stop as a rigid body, and the momentum invariant of a loaded block.
 //! - `moving_string`: eigenvalues of the axially moving string, alone and with an oscillator
 //!   (Hetzler 2009, §4.2.1; docs/moving_continua.md).
 //! - `thick_string_galerkin`, `thick_string_continuum`: the thick string with friction (Hetzler
 //!   2009, §4.2.2): an independent sine-Galerkin model (closed-form integrals, its own
 //!   eigensolver) and the continuum characteristic function with the jump conditions at ā.
 
+pub mod coulomb_friction;
+pub mod loaded_block;
 pub mod moving_string;
 pub mod rod_constant_data;
 pub mod rod_paper;
 pub mod signorini_bar;
+pub mod sliding_block;
 pub mod thick_string_continuum;
 pub mod thick_string_galerkin;
 

@@ -4,6 +4,7 @@
 pub mod bar_wall;
 pub mod bars;
 pub mod extremes;
+pub mod friction;
 pub mod impact;
 pub mod manufactured;
 pub mod performance;
