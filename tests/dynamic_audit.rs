@@ -228,7 +228,6 @@ fn scratch_dump() {
     println!("{s:?}");
     let sums = a.roundoff_scales();
     let e = a.energy_scale();
-    let n = a.records.len();
     for (r, sum) in a.records.iter().zip(&sums).take(12) {
         println!(
             "n={} t={:.4e} R48/E={:+.2e} ratio={:.3} stiffw/E={:.2e} it={} res48/E={:+.2e} E={:.6e} pen={:.3e}",

@@ -224,8 +224,7 @@ impl AuditRecord {
             w_f += n.friction * n.increment[1];
             d_b += n.constraint_work();
             d_phi += n.energy_change();
-            penalty +=
-                compliance_energy(n.weight, n.stiffness.unwrap_or(0.0), n.penetration[1]);
+            penalty += compliance_energy(n.weight, n.stiffness.unwrap_or(0.0), n.penetration[1]);
         }
         let w_ext = input.external_work;
         let de = (input.kinetic + input.elastic) - self.energy();
@@ -461,7 +460,10 @@ impl EnergyAudit {
     /// D_b (zero for a conserving run; the energy error of the midpoint rule on a hyperelastic
     /// body).
     pub fn balance_drift(&self) -> Vec<(f64, f64)> {
-        self.records.iter().map(|r| (r.time, r.drift_1_49)).collect()
+        self.records
+            .iter()
+            .map(|r| (r.time, r.drift_1_49))
+            .collect()
     }
 }
 

@@ -72,7 +72,9 @@ impl BlockFoundation {
     /// r.
     pub fn stiffness(&self) -> f64 {
         match *self {
-            Self::Compliance { stiffness } | Self::LimitedPenetration { stiffness, .. } => stiffness,
+            Self::Compliance { stiffness } | Self::LimitedPenetration { stiffness, .. } => {
+                stiffness
+            }
         }
     }
 }
@@ -361,7 +363,10 @@ mod tests {
             } else if 0.5 * k * (v + backward) < 0.0 {
                 (0.5 * k * (v + backward), backward)
             } else {
-                assert!(2.0 * m * v.abs() / k <= f * (1.0 + 1e-12), "stick out of bound");
+                assert!(
+                    2.0 * m * v.abs() / k <= f * (1.0 + 1e-12),
+                    "stick out of bound"
+                );
                 (0.0, -v)
             };
             if d == 0.0 && slides.is_none() {
@@ -384,11 +389,18 @@ mod tests {
             let stop = b.discrete_stop(k);
             let (n, s, history) = run_rigid_midpoint(&b, k, steps);
             assert_eq!(n, stop.last_sliding_step, "N = {steps}");
-            assert!((s - stop.slip).abs() < 1e-12, "N = {steps}: {s} vs {}", stop.slip);
+            assert!(
+                (s - stop.slip).abs() < 1e-12,
+                "N = {steps}: {s} vs {}",
+                stop.slip
+            );
             // after the stop δu alternates ±v(t_s)
             for (i, v) in history.iter().enumerate().skip(n) {
                 let sign = if (i - n) % 2 == 0 { -1.0 } else { 1.0 };
-                assert!((v - sign * stop.velocity).abs() < 1e-12, "N = {steps} step {i}");
+                assert!(
+                    (v - sign * stop.velocity).abs() < 1e-12,
+                    "N = {steps} step {i}"
+                );
             }
             assert!((stop.time - t_star).abs() <= 0.5 * k + 1e-12);
         }
@@ -402,7 +414,11 @@ mod tests {
             let k = 1.5 * t_star / steps as f64;
             let stop = b.discrete_stop(k);
             let phi = stop.phase.min(1.0 - stop.phase);
-            assert!((phi - 1.0 / 3.0).abs() < 1e-9, "N = {steps}: θ = {}", stop.phase);
+            assert!(
+                (phi - 1.0 / 3.0).abs() < 1e-9,
+                "N = {steps}: θ = {}",
+                stop.phase
+            );
             assert!(((stop.time - t_star).abs() - k / 3.0).abs() < 1e-12);
             let a = b.deceleration();
             assert!(((b.stop_distance() - stop.slip) - a * k * k / 18.0).abs() < 1e-14);

@@ -529,23 +529,45 @@ ceiling = 1e-12
 #[cfg(test)]
 mod scratch {
     use super::*;
-    use contactlab::model::dynamic::scheme::DynamicScheme;
     use crate::dynamic::cases::bars::family::{Scaling, TreatmentKind};
     use contactlab::model::dynamic::bar::MassMatrix;
+    use contactlab::model::dynamic::scheme::DynamicScheme;
 
     #[test]
     #[ignore]
     fn dump_rebound() {
-        let bar = BarSpec { length: 2.0, density: 4.0, young: 9.0, area: 0.5, speed: 0.3, gap: 0.06 };
-        for (treat, r) in [(TreatmentKind::EnergyConsistent, Some(10.0)), (TreatmentKind::Signorini, None), (TreatmentKind::Penalty, Some(100.0))] {
-            let fam = FamilySpec { name: "x".into(), treatment: treat, scheme: DynamicScheme::Midpoint, mass: MassMatrix::Consistent, stiffness: r, stiffness_scaling: Scaling::Element, depth: None, depth_scaling: Scaling::Element };
+        let bar = BarSpec {
+            length: 2.0,
+            density: 4.0,
+            young: 9.0,
+            area: 0.5,
+            speed: 0.3,
+            gap: 0.06,
+        };
+        for (treat, r) in [
+            (TreatmentKind::EnergyConsistent, Some(10.0)),
+            (TreatmentKind::Signorini, None),
+            (TreatmentKind::Penalty, Some(100.0)),
+        ] {
+            let fam = FamilySpec {
+                name: "x".into(),
+                treatment: treat,
+                scheme: DynamicScheme::Midpoint,
+                mass: MassMatrix::Consistent,
+                stiffness: r,
+                stiffness_scaling: Scaling::Element,
+                depth: None,
+                depth_scaling: Scaling::Element,
+            };
             let mut prev: Option<(f64, f64)> = None;
             for m in [50usize, 100, 200, 400, 800, 1600, 3200, 6400, 12800] {
                 let n = (3.6f64 / (2.0 / m as f64 / 1.5)).round() as usize;
                 let out = run_level(&bar, &fam, m, n, 3.6, false).unwrap();
                 let e = &out.level.errors;
                 let v = e["rebound_velocity_error"];
-                let rate = prev.map(|(h0, e0)| (e0 / v).ln() / (h0 / (2.0 / m as f64)).ln()).unwrap_or(f64::NAN);
+                let rate = prev
+                    .map(|(h0, e0)| (e0 / v).ln() / (h0 / (2.0 / m as f64)).ln())
+                    .unwrap_or(f64::NAN);
                 println!("{treat:?} M={m} rebound {v:.4e} rate {rate:.3} energy {:.3e} dur {:.3e} cv {:.3e}", e["energy_error"], e["duration_error"], e["centre_velocity_max"]);
                 prev = Some((2.0 / m as f64, v));
             }

@@ -35,7 +35,7 @@ use crate::core::context::RunContext;
 use crate::core::format::positive;
 use crate::core::format::CaseError;
 use crate::core::gate::{Check, GateVerdict};
-use crate::core::report::case_report::CaseReport;
+use crate::core::report::case_report::{CaseReport, Table};
 use crate::moving::errors::max_real_part;
 use crate::moving::plots::{boundary, map_figure};
 use crate::moving::study::{check_growth, flutter_onset, model_eigenvalues, Bushing};
@@ -74,7 +74,6 @@ pub struct MapGrid {
     pub control_from: f64,
     pub control_to: f64,
     pub controls: usize,
-    pub budget_seconds: f64,
 }
 
 /// `[checks]`.
@@ -118,7 +117,6 @@ pub struct LowOrder {
 impl MapCase {
     /// Checks the numbers of the case.
     pub fn check(&self, p: &Path) -> Result<(), CaseError> {
-        positive(p, "map.budget_seconds", self.map.budget_seconds)?;
         positive(p, "checks.faer_round_off", self.checks.faer_round_off)?;
         positive(p, "checks.time_duration", self.checks.time_duration)?;
         if self.map.speeds < 2 || self.map.controls < 2 {
@@ -227,20 +225,30 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
     // report the observed wall time.
     let dedicated = cpu / map.threads_used as f64;
     let shared = seconds > 1.25 * dedicated;
-    report.gates.push(GateVerdict::from_checks(
-        format!("{} × {} map, N = {} sine functions, under {} s", g.speeds, g.controls, m.modes, g.budget_seconds),
-        "performance",
-        vec![Check::at_most(
-            &format!(
-                "time on {} dedicated cores = CPU time / threads (s): CPU {cpu:.2} s, {per_point_us:.0} µs per point; observed wall time {seconds:.2} s{}",
-                map.threads_used,
-                if shared { " (cores shared with other processes during the run)" } else { "" }
+    report.tables.push(Table {
+        title: format!(
+            "cost of the {} × {} map, N = {} sine functions (its budget: the criterion benchmark \
+             moving_stability_map/map/200x200, benches/budgets.toml)",
+            g.speeds, g.controls, m.modes
+        ),
+        header: vec![
+            "threads".into(),
+            "CPU (s)".into(),
+            "CPU per point (µs)".into(),
+            "CPU / threads (s)".into(),
+            "wall (s)".into(),
+        ],
+        rows: vec![vec![
+            map.threads_used.to_string(),
+            format!("{cpu:.3}"),
+            format!("{per_point_us:.0}"),
+            format!("{dedicated:.3}"),
+            format!(
+                "{seconds:.3}{}",
+                if shared { " (cores shared)" } else { "" }
             ),
-            dedicated,
-            g.budget_seconds,
-        )],
-        "parallel over lines of the map, one Hessenberg reduction per line, the Francis QR per point; CPU time from /proc/self/stat",
-    ));
+        ]],
+    });
     // Determinism: a band of rows on one thread.
     let rows = case.checks.determinism_rows.min(g.controls);
     let y_band = GridAxis {

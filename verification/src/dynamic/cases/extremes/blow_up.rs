@@ -60,7 +60,10 @@ pub(super) fn run_blow_up(
             ));
             checks.extend(run.audit_checks());
             checks.push(Check::at_most(
-                &format!("{}: largest relative balance drift over the run (limit C ε √N S / E_ref)", run.label),
+                &format!(
+                    "{}: largest relative balance drift over the run (limit C ε √N S / E_ref)",
+                    run.label
+                ),
                 drift,
                 run.summary_value(|s| s.tolerance()),
             ));

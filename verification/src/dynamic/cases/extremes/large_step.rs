@@ -67,7 +67,10 @@ pub(super) fn run_large_step(
                 ));
                 checks.extend(run.audit_checks());
                 checks.push(Check::at_most(
-                    &format!("{}: bounded energy: max |drift| / (E + Φ)_0 (limit C ε √N S / E_ref)", run.label),
+                    &format!(
+                        "{}: bounded energy: max |drift| / (E + Φ)_0 (limit C ε √N S / E_ref)",
+                        run.label
+                    ),
                     drift,
                     run.summary_value(|s| s.tolerance()),
                 ));

@@ -90,9 +90,9 @@ pub(crate) fn build(
     let (e, nu) = (shape.young, shape.poisson);
     let law: Arc<dyn Hyperelastic2d> = match shape.law {
         "linear" => Arc::new(LinearElastic::from_young_poisson(e, nu).map_err(|e| e.to_string())?),
-        "st_venant_kirchhoff" => Arc::new(
-            StVenantKirchhoff::from_young_poisson(e, nu).map_err(|e| e.to_string())?,
-        ),
+        "st_venant_kirchhoff" => {
+            Arc::new(StVenantKirchhoff::from_young_poisson(e, nu).map_err(|e| e.to_string())?)
+        }
         "neo_hooke" => Arc::new(NeoHooke::from_young_poisson(e, nu).map_err(|e| e.to_string())?),
         other => return Err(format!("unknown law {other}")),
     };

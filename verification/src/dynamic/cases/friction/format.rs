@@ -246,7 +246,12 @@ impl FrictionCase {
             positive(p, &field("mu0"), f.mu0)?;
             match (f.law, f.depth) {
                 (FrictionLaw::Constant, Some(d)) => {
-                    return Err(invalid(p, &field("depth"), d, "no depth for law = \"constant\""))
+                    return Err(invalid(
+                        p,
+                        &field("depth"),
+                        d,
+                        "no depth for law = \"constant\"",
+                    ))
                 }
                 (FrictionLaw::Constant, None) => {}
                 (_, Some(d)) => positive(p, &field("depth"), d)?,
@@ -281,7 +286,12 @@ impl FrictionCase {
             }
         }
         if self.slide.is_none() && self.loaded.is_none() {
-            return Err(invalid(p, "slide", "(missing)", "a [slide] or a [loaded] section"));
+            return Err(invalid(
+                p,
+                "slide",
+                "(missing)",
+                "a [slide] or a [loaded] section",
+            ));
         }
         if let Some(s) = &self.slide {
             self.check_slide(p, s)?;
@@ -294,7 +304,11 @@ impl FrictionCase {
             let Some(s) = &self.slide else {
                 return Err(invalid(p, &field, "(given)", "a [slide] section to gate"));
             };
-            if !s.runs(&self.families).iter().any(|f| f.name == g.select.family) {
+            if !s
+                .runs(&self.families)
+                .iter()
+                .any(|f| f.name == g.select.family)
+            {
                 return Err(invalid(
                     p,
                     &format!("{field}.family"),
@@ -330,7 +344,12 @@ impl FrictionCase {
         check_poisson(p, "slide.poisson", s.poisson)?;
         check_divisions(p, "slide.divisions", s.divisions)?;
         if !(s.duration.is_finite() && s.duration > 1.0) {
-            return Err(invalid(p, "slide.duration", s.duration, "a number > 1 (T past the stop)"));
+            return Err(invalid(
+                p,
+                "slide.duration",
+                s.duration,
+                "a number > 1 (T past the stop)",
+            ));
         }
         at_least(p, "slide.steps", &s.steps, 3)?;
         if s.steps.windows(2).any(|w| w[1] <= w[0]) || s.steps[0] == 0 {
@@ -343,7 +362,12 @@ impl FrictionCase {
         }
         if let Some(t) = s.tolerance {
             if !(t > 0.0 && t < 1e-6) {
-                return Err(invalid(p, "slide.tolerance", t, "a Newton tolerance in (0, 1e-6)"));
+                return Err(invalid(
+                    p,
+                    "slide.tolerance",
+                    t,
+                    "a Newton tolerance in (0, 1e-6)",
+                ));
             }
         }
         check_scheme(p, "slide.scheme", s.scheme)?;

@@ -155,16 +155,17 @@ pub fn run_with_reference(
                         let p = momentum(body, view.velocity, &mut scratch);
                         let j = p[0] + mu * p[1];
                         j_error = (j - exact.invariant(mu, view.time)).abs() / momentum0;
-                        allowance += k
-                            * c.allowance
-                                .iter()
-                                .zip(&component)
-                                .map(|(a, &comp)| if comp == 0 { *a } else { mu * a })
-                                .sum::<f64>()
+                        allowance += k * c
+                            .allowance
+                            .iter()
+                            .zip(&component)
+                            .map(|(a, &comp)| if comp == 0 { *a } else { mu * a })
+                            .sum::<f64>()
                             / momentum0;
                         run.invariant_error = run.invariant_error.map(|m| m.max(j_error));
                         run.invariant_allowance = Some(allowance);
-                        run.invariant_ratio = run.invariant_ratio.map(|m| m.max(j_error / allowance));
+                        run.invariant_ratio =
+                            run.invariant_ratio.map(|m| m.max(j_error / allowance));
                     }
                 }
                 run.history.push([view.time, ratio, j_error]);

@@ -51,6 +51,7 @@ use contactlab::model::dynamic::record::Conserving;
 const SIGNS_ONLY: Conserving = Conserving {
     balance: false,
     contact: false,
+    compliance: true,
 };
 
 const AUDIT_NOTE: &str = "friction work ≤ 0 every step (W_τ = Σ T_i d_i with T_i against the \

@@ -14,7 +14,12 @@ fn strings<const N: usize>(v: [&str; N]) -> Vec<String> {
 }
 
 /// The case's tables.
-pub fn tables(file: &FrictionCase, slide: &[SlideRun], loaded: &[LoadedRun], report: &mut CaseReport) {
+pub fn tables(
+    file: &FrictionCase,
+    slide: &[SlideRun],
+    loaded: &[LoadedRun],
+    report: &mut CaseReport,
+) {
     if let Some(spec) = &file.slide {
         let rows = spec
             .runs(&file.families)
@@ -142,7 +147,10 @@ pub fn plots(
         let mut histories = Vec::new();
         for f in &families {
             let b = spec.block(f);
-            let Some(r) = slide.iter().filter(|r| r.family == f.name).max_by_key(|r| r.steps)
+            let Some(r) = slide
+                .iter()
+                .filter(|r| r.family == f.name)
+                .max_by_key(|r| r.steps)
             else {
                 continue;
             };
@@ -152,7 +160,10 @@ pub fn plots(
                 Figure::new(format!("{} (N = {}): slip", f.name, r.steps))
                     .x_label("t")
                     .y_label("mean slip of the contact nodes")
-                    .series(Series::line("computed", r.history.iter().map(|h| (h[0], h[1]))))
+                    .series(Series::line(
+                        "computed",
+                        r.history.iter().map(|h| (h[0], h[1])),
+                    ))
                     .series(
                         Series::line("exact", exact_t.iter().map(|&t| (t, b.slip(t))))
                             .dashed()
@@ -163,7 +174,10 @@ pub fn plots(
                 Figure::new(format!("{} (N = {}): velocity", f.name, r.steps))
                     .x_label("t")
                     .y_label("P_x / m")
-                    .series(Series::line("computed", r.history.iter().map(|h| (h[0], h[2]))))
+                    .series(Series::line(
+                        "computed",
+                        r.history.iter().map(|h| (h[0], h[2])),
+                    ))
                     .series(
                         Series::line("exact", exact_t.iter().map(|&t| (t, b.velocity(t))))
                             .dashed()
@@ -178,25 +192,36 @@ pub fn plots(
             &histories,
             2,
         )?;
-        let errors: Vec<Figure> = ["stop_time_error", "stop_distance_error", "post_stop_velocity"]
-            .iter()
-            .map(|e| {
-                let mut fig = Figure::new(*e).x_label("k").y_label(*e).log_log();
-                for (i, f) in families.iter().enumerate() {
-                    fig = fig.series(
-                        Series::line_markers(
-                            f.name.clone(),
-                            slide
-                                .iter()
-                                .filter(|r| r.family == f.name)
-                                .map(|r| (r.k, r.errors[*e])),
-                        )
-                        .color(i),
-                    );
-                }
-                fig.reference_slope(if *e == "stop_distance_error" { 2.0 } else { 1.0 }, "")
-            })
-            .collect();
+        let errors: Vec<Figure> = [
+            "stop_time_error",
+            "stop_distance_error",
+            "post_stop_velocity",
+        ]
+        .iter()
+        .map(|e| {
+            let mut fig = Figure::new(*e).x_label("k").y_label(*e).log_log();
+            for (i, f) in families.iter().enumerate() {
+                fig = fig.series(
+                    Series::line_markers(
+                        f.name.clone(),
+                        slide
+                            .iter()
+                            .filter(|r| r.family == f.name)
+                            .map(|r| (r.k, r.errors[*e])),
+                    )
+                    .color(i),
+                );
+            }
+            fig.reference_slope(
+                if *e == "stop_distance_error" {
+                    2.0
+                } else {
+                    1.0
+                },
+                "",
+            )
+        })
+        .collect();
         ctx.panels(
             report,
             "slide_convergence",

@@ -144,7 +144,9 @@ impl<'a> StepEquations<'a> {
         let mterms = mul(
             body,
             &self.mass_abs,
-            &(0..n).map(|i| d_abs[i] + k * v0[i].abs()).collect::<Vec<_>>(),
+            &(0..n)
+                .map(|i| d_abs[i] + k * v0[i].abs())
+                .collect::<Vec<_>>(),
         );
         let mut terms: Vec<f64> = (0..n)
             .map(|i| kterms[i] + alpha * mterms[i] + f[i].abs())

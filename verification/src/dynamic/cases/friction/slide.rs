@@ -160,7 +160,11 @@ impl<'a> Measure<'a> {
     }
 
     fn observe(&mut self, view: &StepView<'_>, px: f64) {
-        let u: Vec<f64> = self.nodes.iter().map(|&(t, _)| view.displacement[t]).collect();
+        let u: Vec<f64> = self
+            .nodes
+            .iter()
+            .map(|&(t, _)| view.displacement[t])
+            .collect();
         if view.step == 0 {
             self.initial = u.clone();
             self.previous = u.clone();
@@ -182,7 +186,10 @@ impl<'a> Measure<'a> {
         }
         if view.step > 0 {
             let lag = self.exact.shear_lag();
-            let slips = u.iter().zip(&self.previous).any(|(a, b)| (a - b).abs() > lag);
+            let slips = u
+                .iter()
+                .zip(&self.previous)
+                .any(|(a, b)| (a - b).abs() > lag);
             match self.first_stuck {
                 None if !slips => {
                     self.first_stuck = Some(view.step);

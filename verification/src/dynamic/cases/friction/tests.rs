@@ -64,9 +64,12 @@ fn load(text: &str) -> Result<FrictionCase, CaseError> {
 #[test]
 fn minimal_case_parses_and_bad_input_is_a_typed_error() {
     assert!(load(MINIMAL).is_ok());
-    let e = load(&MINIMAL.replace("speed = 1.0\nduration = 1.5", "speed = 1.0\ncolour = 1\nduration = 1.5"))
-        .unwrap_err()
-        .to_string();
+    let e = load(&MINIMAL.replace(
+        "speed = 1.0\nduration = 1.5",
+        "speed = 1.0\ncolour = 1\nduration = 1.5",
+    ))
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("colour"), "{e}");
     let e = load(&MINIMAL.replace("depth = 0.013333333333333334\n", ""))
         .unwrap_err()
@@ -101,10 +104,17 @@ fn sliding_block_stops_at_the_predicted_step_with_the_predicted_errors() {
         assert_eq!(r.errors["stop_step_offset"], 0.0, "N = {n}");
         let k = r.k;
         let t_err = r.errors["stop_time_error"] * b.stop_time();
-        assert!((t_err - k / 3.0).abs() < 1e-9 * k, "N = {n}: {t_err} vs {}", k / 3.0);
+        assert!(
+            (t_err - k / 3.0).abs() < 1e-9 * k,
+            "N = {n}: {t_err} vs {}",
+            k / 3.0
+        );
         let s_err = r.errors["stop_distance_error"] * b.stop_distance();
         let predicted = b.deceleration() * k * k / 18.0;
-        assert!((s_err - predicted).abs() < 0.01 * predicted, "N = {n}: {s_err} vs {predicted}");
+        assert!(
+            (s_err - predicted).abs() < 0.01 * predicted,
+            "N = {n}: {s_err} vs {predicted}"
+        );
         assert!(r.errors["slip_after_stop"] <= 2.0 * b.shear_lag());
     }
 }
@@ -119,7 +129,10 @@ fn loaded_block_satisfies_its_step_equations_and_a_wrong_law_does_not() {
     assert!(r.all_slide_until >= 0.5 * r.rigid_stop_time, "{r:?}");
     // the penetration crosses the layer depth g: both branches of μ1 are exercised
     let g = f.depth.unwrap();
-    assert!(r.penetration_range[0] < g && r.penetration_range[1] > 0.5 * g, "{r:?}");
+    assert!(
+        r.penetration_range[0] < g && r.penetration_range[1] > 0.5 * g,
+        "{r:?}"
+    );
     // the same run checked against μ = μ0 (the solver keeps μ1): the residual is the friction's
     // size, far above the tolerance
     let wrong = FamilySpec {
@@ -132,4 +145,3 @@ fn loaded_block_satisfies_its_step_equations_and_a_wrong_law_does_not() {
     let r_wrong = loaded::run_with_reference(&spec_wrong, f, &wrong, 40).unwrap();
     assert!(r_wrong.max_residual > 1e3, "{r_wrong:?}");
 }
-

@@ -125,8 +125,6 @@ pub struct ImpactCase {
     pub snapshot_times: Vec<f64>,
     /// Largest relative change of the centre-of-mass velocity in flight.
     pub momentum_tolerance: f64,
-    /// Largest wall time of a run's time loop at the report's resolution (s).
-    pub budget_seconds: Option<f64>,
     /// Largest relative energy loss of a frictionless limited-penetration run.
     pub max_stage_b_loss: Option<f64>,
     #[serde(rename = "run")]
@@ -182,9 +180,6 @@ impl ImpactCase {
         positive(p, "momentum_tolerance", self.momentum_tolerance)?;
         if let Some(r) = self.resolution {
             positive(p, "resolution", r)?;
-        }
-        if let Some(b) = self.budget_seconds {
-            positive(p, "budget_seconds", b)?;
         }
         if let Some(b) = self.max_stage_b_loss {
             positive(p, "max_stage_b_loss", b)?;

@@ -20,7 +20,6 @@
 //!   unlimited energy-consistent force exceed g (the limit is the method's doing);
 //! - momentum: constant in flight (Σ F_int = 0 by translation invariance) to `momentum_tolerance`;
 //! - every run separates before T (rebound and contact duration defined);
-//! - cost: each run's time loop at the report's resolution within `budget_seconds`;
 //! - self-convergence: GCI of the finest pair below a percentage, and the asymptotic ratio of
 //!   [`crate::stats::gci`] within a tolerance (four levels or more).
 

@@ -91,7 +91,6 @@ impl CaseData<'_> {
         let mut penetration = Vec::new();
         let mut momentum = Vec::new();
         let mut energy = Vec::new();
-        let mut budget = Vec::new();
         for (label, spec, out) in runs {
             let out = match out {
                 Ok(o) => o,
@@ -166,16 +165,6 @@ impl CaseData<'_> {
                     }
                 }
             }
-            if let Some(b) = self.case.budget_seconds {
-                budget.push(Check::at_most(
-                    &format!(
-                        "{label}: time loop ({} steps, {} dofs)",
-                        out.steps, out.stats.unknowns
-                    ),
-                    out.stats.loop_seconds,
-                    b,
-                ));
-            }
         }
         let gates = [
             ("runs complete", "completion", completion, ""),
@@ -205,12 +194,6 @@ impl CaseData<'_> {
                 energy,
                 "(E + Φ)_N − (E + Φ)_0 = W_τ + D_b exactly for the conserving combinations \
                  (the sum of the per-step identities: N × round-off); stage (b) only dissipates",
-            ),
-            (
-                "cost at the report's resolution",
-                "performance",
-                budget,
-                "wall time of each run's time loop on this machine",
             ),
         ];
         for (name, kind, checks, note) in gates {

@@ -291,8 +291,8 @@ explanation = "x"
 law = "linear"
 [time_study]
 divisions = 4
-steps = [4, 8]
-reference_steps = 64
+steps = [4, 8, 16]
+reference_steps = 128
 runs = [{ scheme = "midpoint", treatment = "energy_consistent" }]
 [[gate]]
 study = "time"
@@ -301,9 +301,7 @@ treatment = "energy_consistent"
 error = "l2"
 expected_rate = 2.0
 tolerance = 0.1
-finest_levels = 2
 ci_width = 1.0
-ceiling = 1.0
 "#;
 
     fn load(text: &str) -> Result<ManufacturedCase, CaseError> {

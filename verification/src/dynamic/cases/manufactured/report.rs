@@ -30,9 +30,7 @@ pub(crate) struct RateSeries {
 
 /// The worst audit summary over runs (largest residuals, drifts and step works).
 pub(crate) fn worst(summaries: impl Iterator<Item = AuditSummary>) -> AuditSummary {
-    summaries
-        .reduce(|a, s| a.worst(&s))
-        .unwrap_or_default()
+    summaries.reduce(|a, s| a.worst(&s)).unwrap_or_default()
 }
 
 /// Per-step cost and Newton statistics of a run.

@@ -1,5 +1,5 @@
 //! The case format of `dynamic_performance` and its checks: the series of growing meshes and
-//! the budgeted whole runs, every level's scene validated.
+//! the timed whole runs, every level's scene validated.
 
 use serde::{Deserialize, Serialize};
 
@@ -16,7 +16,7 @@ pub struct PerformanceCase {
     #[serde(default)]
     pub series: Vec<SeriesSpec>,
     #[serde(default)]
-    pub budget: Vec<BudgetSpec>,
+    pub timed: Vec<TimedSpec>,
 }
 
 /// `[[series]]`: one scene on meshes of growing size.
@@ -29,8 +29,6 @@ pub struct SeriesSpec {
     pub levels: Vec<toml::Table>,
     /// Timed runs per level (the best is kept; a first run warms the caches).
     pub repeats: usize,
-    /// The time loop of the largest level may take at most this (s).
-    pub budget_seconds: f64,
     /// The cost ratio (step / forward–backward pass, or Newton iteration / factorization + solve)
     /// at any level may be at most this multiple of its value at the first level.
     pub max_ratio_growth: f64,
@@ -38,12 +36,13 @@ pub struct SeriesSpec {
     pub note: String,
 }
 
-/// `[[budget]]`: one whole run against a wall-clock budget.
+/// `[[timed]]`: one whole run, timed and reported (its wall-clock budget lives with the criterion
+/// benchmarks, `benches/budgets.toml`: an absolute time on an unknown machine is no verdict).
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub struct BudgetSpec {
+pub struct TimedSpec {
     pub name: String,
-    /// The scene inline (`[budget.scene]`) ...
+    /// The scene inline (`[timed.scene]`) ...
     #[serde(default)]
     pub scene: Option<toml::Table>,
     /// ... or a scene file relative to the case file (exactly one of the two).
@@ -52,22 +51,20 @@ pub struct BudgetSpec {
     /// Dotted scene keys overriding the scene's (`{ "body.radial" = 16 }`).
     #[serde(default)]
     pub set: toml::Table,
-    /// Reading the scene + building the model + time loop (s), best of `repeats`.
-    pub budget_seconds: f64,
     #[serde(default = "one")]
     pub repeats: usize,
     #[serde(default)]
     pub note: String,
 }
 
-impl BudgetSpec {
-    /// The budget's scene: read (from its file) and built with its overrides.
+impl TimedSpec {
+    /// The timed run's scene: read (from its file) and built with its overrides.
     pub(super) fn load(
         &self,
         case_path: &std::path::Path,
         index: usize,
     ) -> Result<DynamicScene, String> {
-        let source = format!("budget[{index}]");
+        let source = format!("timed[{index}]");
         match (&self.scene, &self.scene_file) {
             (Some(table), None) => scene_from_table(table, &self.set, &source),
             (None, Some(file)) => {
@@ -93,15 +90,15 @@ pub(super) fn one() -> usize {
     1
 }
 
-/// Checks the case's format: known keys only, valid scenes at every level, positive budgets.
+/// Checks the case's format: known keys only, valid scenes at every level, positive growth factors.
 pub fn check(case: &Case) -> Result<(), CaseError> {
     let c: PerformanceCase = case.body()?;
-    if c.series.is_empty() && c.budget.is_empty() {
+    if c.series.is_empty() && c.timed.is_empty() {
         return Err(invalid(
             case.path(),
-            "series / budget",
+            "series / timed",
             "(none)",
-            "at least one [[series]] or [[budget]]",
+            "at least one [[series]] or [[timed]]",
         ));
     }
     let read = |e: String| CaseError::Read {
@@ -128,10 +125,7 @@ pub fn check(case: &Case) -> Result<(), CaseError> {
                 "at least 1",
             ));
         }
-        for (f, v) in [
-            ("budget_seconds", s.budget_seconds),
-            ("max_ratio_growth", s.max_ratio_growth),
-        ] {
+        for (f, v) in [("max_ratio_growth", s.max_ratio_growth)] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(invalid(
                     case.path(),
@@ -142,16 +136,8 @@ pub fn check(case: &Case) -> Result<(), CaseError> {
             }
         }
     }
-    for (i, b) in c.budget.iter().enumerate() {
+    for (i, b) in c.timed.iter().enumerate() {
         b.load(case.path(), i).map_err(read)?;
-        if !(b.budget_seconds.is_finite() && b.budget_seconds > 0.0) {
-            return Err(invalid(
-                case.path(),
-                &format!("budget[{i}].budget_seconds"),
-                b.budget_seconds,
-                "a finite number > 0",
-            ));
-        }
     }
     Ok(())
 }
