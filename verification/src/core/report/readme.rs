@@ -87,10 +87,11 @@ fn rates(report: &Value) -> String {
         .join("; ")
 }
 
-/// The `evidence` block: one row per case.
+/// The `evidence` block: one row per case — its title (what it establishes), tier, verdict, the
+/// gates passed and the fitted rates grouped by expected rate.
 pub fn evidence(reports: &Path) -> Result<String, String> {
     let mut s = String::from(
-        "| case | tier | verdict | gates passed | fitted rates, by expected rate |\n|---|---|---|---|---|\n",
+        "| case | what it establishes | tier | verdict | gates passed | fitted rates, by expected rate |\n|---|---|---|---|---|---|\n",
     );
     for r in case_reports(reports)? {
         let gates = r["gates"].as_array().cloned().unwrap_or_default();
@@ -104,8 +105,9 @@ pub fn evidence(reports: &Path) -> Result<String, String> {
             _ => "**FAIL**",
         };
         s.push_str(&format!(
-            "| `{}` | {} | {} | {}/{} | {} |\n",
+            "| `{}` | {} | {} | {} | {}/{} | {} |\n",
             r["id"].as_str().unwrap_or("?"),
+            r["title"].as_str().unwrap_or("").replace('|', "\\|"),
             r["tier"].as_str().unwrap_or("?"),
             verdict,
             passed,
