@@ -11,11 +11,11 @@
 //!    then no level is a floor). Only a run of levels at the fine end is cut, so a floor cannot
 //!    hide a coarse level.
 //! 2. **Pre-asymptotic** (at the coarse end). The fit uses the longest run of the finest levels
-//!    whose pairwise rates all lie within the gate's `tolerance` of the run's median (at least
-//!    the three finest levels, two rates); the coarser levels are pre-asymptotic (the rates are
-//!    still drifting there). "Longest" is taken over every run ending at the finest level, not
-//!    grown one level at a time: a single rate near the tolerance in the middle of an otherwise
-//!    agreeing sequence moves the median of a short run more than that of the whole one. The rule looks at the rates only, never at the expected rate, so it cannot select
+//!    whose pairwise rates all lie within the gate's `tolerance` of their median: starting from
+//!    the three finest levels (two rates), the next coarser level joins while every rate of the
+//!    run, its own included, stays within `tolerance` of the run's median; the first level that
+//!    would break this, and every coarser one, is pre-asymptotic (the rates are still drifting
+//!    there). The rule looks at the rates only, never at the expected rate, so it cannot select
 //!    levels that agree with the expectation.
 //!
 //! At least three levels must remain (two pairwise rates and one degree of freedom for the
@@ -149,17 +149,20 @@ pub fn asymptotic_window(param: &[f64], error: &[f64], tolerance: f64, floor: f6
             (a.error.ln() - b.error.ln()) / (a.param.ln() - b.param.ln())
         };
         let rates: Vec<f64> = candidates.windows(2).map(|w| rate(w[0], w[1])).collect();
-        // the longest run of finest rates, rates[first..], that agrees with its own median; the
-        // two finest rates always form a run
-        let agrees = |run: &[f64]| {
+        // the run starts with the two finest rates and takes rates[first..]
+        let mut first = rates.len() - (MIN_LEVELS - 1);
+        while first > 0 {
+            let run = &rates[first - 1..];
             let m = median(run);
-            run.iter()
+            if run
+                .iter()
                 .all(|r| r.is_finite() && (r - m).abs() <= tolerance)
-        };
-        let shortest = rates.len() - (MIN_LEVELS - 1);
-        let first = (0..shortest)
-            .find(|&f| agrees(&rates[f..]))
-            .unwrap_or(shortest);
+            {
+                first -= 1;
+            } else {
+                break;
+            }
+        }
         for &i in &candidates[..first] {
             levels[i].excluded = Some(Exclusion::PreAsymptotic);
         }
@@ -220,27 +223,6 @@ mod tests {
         let e = [1.0, 0.9, 0.2, 0.19, 0.01];
         let w = asymptotic_window(&h, &e, 0.01, 0.0);
         assert!(w.count() >= MIN_LEVELS);
-    }
-
-    #[test]
-    fn the_longest_agreeing_run_is_taken_not_the_first_break() {
-        // pairwise rates 0.991, 0.989, 0.984, 1.085, 0.971 (coarse to fine; the Signorini bar's
-        // penalty energy error): the three finest rates' median is 0.984, 1.085 lies 0.101 from
-        // it, but all five lie within 0.1 of their median 0.989
-        let h = halving(6);
-        let rates = [0.991, 0.989, 0.984, 1.085, 0.971];
-        let mut e = vec![1.0];
-        for (i, r) in rates.iter().enumerate() {
-            e.push(e[i] * 0.5_f64.powf(*r));
-        }
-        assert_eq!(asymptotic_window(&h, &e, 0.1, 0.0).count(), 6);
-        // a drifting coarse rate still leaves
-        let rates = [0.6, 0.989, 0.984, 1.085, 0.971];
-        let mut e = vec![1.0];
-        for (i, r) in rates.iter().enumerate() {
-            e.push(e[i] * 0.5_f64.powf(*r));
-        }
-        assert_eq!(asymptotic_window(&h, &e, 0.1, 0.0).count(), 5);
     }
 
     #[test]
