@@ -10,7 +10,7 @@
 use contactlab::fem::norms::{l2_errors, strain_errors};
 use contactlab::fem::triangle_quadrature::TriangleRule;
 
-use crate::manufactured::dynamic_plane::jet;
+use crate::manufactured::dynamic_plane::{jet_of, ManufacturedField};
 
 /// The energy-norm and L² errors of `u` (interleaved nodal values) against u(·, t).
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -19,8 +19,10 @@ pub struct FieldErrors {
     pub l2: f64,
 }
 
-/// ‖ε(u_h − u(t))‖ and ‖u_h − u(t)‖ on the mesh (nodes, triangles), both by the degree-5 rule.
+/// ‖ε(u_h − u(t))‖ and ‖u_h − u(t)‖ on the mesh (nodes, triangles), both by the degree-5 rule,
+/// u the exact displacement `field`.
 pub fn field_errors(
+    field: ManufacturedField,
     nodes: &[[f64; 2]],
     triangles: &[[usize; 3]],
     u: &[f64],
@@ -28,9 +30,11 @@ pub fn field_errors(
 ) -> Result<FieldErrors, String> {
     let rule = TriangleRule::of_degree(5).map_err(|e| e.to_string())?;
     let [energy] = strain_errors(nodes, triangles, &rule, [u], |x| {
-        [jet(x[0], x[1], t).strain()]
+        [jet_of(field, x[0], x[1], t).strain()]
     });
-    let [l2] = l2_errors(nodes, triangles, &rule, [u], |x| [jet(x[0], x[1], t).u]);
+    let [l2] = l2_errors(nodes, triangles, &rule, [u], |x| {
+        [jet_of(field, x[0], x[1], t).u]
+    });
     Ok(FieldErrors { energy, l2 })
 }
 
@@ -48,7 +52,14 @@ mod tests {
         let mesh = TriangleMesh::rectangle([0.0, 0.0], [1.0, 1.0], [n, n], Diagonal::Up).unwrap();
         let m = DynamicManufactured::standard(ManufacturedLaw::Linear);
         let u = m.nodal(mesh.nodes(), 0.3, false);
-        field_errors(mesh.nodes(), mesh.triangles(), &u, 0.3).unwrap()
+        field_errors(
+            ManufacturedField::Smooth,
+            mesh.nodes(),
+            mesh.triangles(),
+            &u,
+            0.3,
+        )
+        .unwrap()
     }
 
     #[test]
@@ -61,12 +72,52 @@ mod tests {
     }
 
     #[test]
+    fn the_affine_field_is_represented_exactly() {
+        let mesh = TriangleMesh::rectangle([0.0, 0.0], [1.0, 1.0], [3, 3], Diagonal::Up).unwrap();
+        let m = DynamicManufactured::standard(ManufacturedLaw::Linear)
+            .with_field(ManufacturedField::Affine);
+        let u = m.nodal(mesh.nodes(), 0.3, false);
+        let e = field_errors(
+            ManufacturedField::Affine,
+            mesh.nodes(),
+            mesh.triangles(),
+            &u,
+            0.3,
+        )
+        .unwrap();
+        assert!(e.l2 < 1e-15 && e.energy < 1e-15, "{e:?}");
+        let smooth = field_errors(
+            ManufacturedField::Smooth,
+            mesh.nodes(),
+            mesh.triangles(),
+            &u,
+            0.3,
+        )
+        .unwrap();
+        assert!(smooth.l2 > 1e-3, "{smooth:?}");
+    }
+
+    #[test]
     fn wrong_time_gives_a_large_error() {
         let mesh = TriangleMesh::rectangle([0.0, 0.0], [1.0, 1.0], [8, 8], Diagonal::Up).unwrap();
         let m = DynamicManufactured::standard(ManufacturedLaw::Linear);
         let u = m.nodal(mesh.nodes(), 0.3, false);
-        let same = field_errors(mesh.nodes(), mesh.triangles(), &u, 0.3).unwrap();
-        let other = field_errors(mesh.nodes(), mesh.triangles(), &u, 0.6).unwrap();
+        let same = field_errors(
+            ManufacturedField::Smooth,
+            mesh.nodes(),
+            mesh.triangles(),
+            &u,
+            0.3,
+        )
+        .unwrap();
+        let other = field_errors(
+            ManufacturedField::Smooth,
+            mesh.nodes(),
+            mesh.triangles(),
+            &u,
+            0.6,
+        )
+        .unwrap();
         assert!(other.l2 > 10.0 * same.l2);
     }
 }

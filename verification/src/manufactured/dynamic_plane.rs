@@ -142,6 +142,49 @@ impl ManufacturedLaw {
     }
 }
 
+/// Which exact displacement: the smooth field of the module documentation, or the affine one of
+/// the time study.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ManufacturedField {
+    /// u of the module documentation: P1 does not represent it (space error O(h) / O(h²)).
+    #[default]
+    Smooth,
+    /// u = (1 − y) (b(t), −a(t)), b = 0.04 sin(2πt), a = 0.06 + 0.03 sin(2πt + 0.5) +
+    /// 0.015 sin(3πt): affine in space, so F is uniform, Div Π = 0 for every law and f0 = ρ ü is
+    /// affine; the consistent mass, the degree-2 load quadrature and the nodal compliance (p = a(t)
+    /// is uniform along Γ3, so w_i r p = ∫ r p φ_i) make the nodal interpolant of u the exact
+    /// solution of the semi-discrete equations. A run's error against u(T) is then its time error
+    /// alone (docs/dynamic.md §3).
+    Affine,
+}
+
+impl ManufacturedField {
+    /// The name as written in case files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Smooth => "smooth",
+            Self::Affine => "affine",
+        }
+    }
+
+    /// u(x, y, t) of this field, on any (dual) number type.
+    pub fn displacement<D: DualNum<Primitive = f64> + Copy>(self, x: D, y: D, t: D) -> [D; 2] {
+        match self {
+            Self::Smooth => displacement(x, y, t),
+            Self::Affine => affine_displacement(y, t),
+        }
+    }
+}
+
+/// The affine exact displacement of [`ManufacturedField::Affine`].
+pub fn affine_displacement<D: DualNum<Primitive = f64> + Copy>(y: D, t: D) -> [D; 2] {
+    let s = -y + 1.0;
+    let b = (t * (2.0 * PI)).sin() * 0.04;
+    let a = (t * (2.0 * PI) + 0.5).sin() * 0.03 + (t * (3.0 * PI)).sin() * 0.015 + 0.06;
+    [s * b, -(s * a)]
+}
+
 /// The exact displacement (see the module documentation), on any (dual) number type.
 pub fn displacement<D: DualNum<Primitive = f64> + Copy>(x: D, y: D, t: D) -> [D; 2] {
     let s = -y + 1.0;
@@ -153,7 +196,7 @@ pub fn displacement<D: DualNum<Primitive = f64> + Copy>(x: D, y: D, t: D) -> [D;
     [ux, uy]
 }
 
-/// The smallest exact penetration on Γ3 over all x and t: a(x, t) ≥ 0.06 − 0.03 − 0.015.
+/// The smallest exact penetration on Γ3 over all x and t (both fields): a ≥ 0.06 − 0.03 − 0.015.
 pub const MIN_EXACT_PENETRATION: f64 = 0.015;
 
 /// u, ∇u (rows: components) and u̇ at a point.
@@ -175,10 +218,15 @@ impl Jet {
     }
 }
 
-/// u, ∇u and u̇ from one hyper-hyper-dual evaluation (x → ε1, y → ε2, t → ε3).
+/// u, ∇u and u̇ of the smooth field (see [`jet_of`]).
 pub fn jet(x: f64, y: f64, t: f64) -> Jet {
+    jet_of(ManufacturedField::Smooth, x, y, t)
+}
+
+/// u, ∇u and u̇ from one hyper-hyper-dual evaluation (x → ε1, y → ε2, t → ε3).
+pub fn jet_of(field: ManufacturedField, x: f64, y: f64, t: f64) -> Jet {
     type H = HyperHyperDual64;
-    let r = displacement(
+    let r = field.displacement(
         H::from_re(x).derivative1(),
         H::from_re(y).derivative2(),
         H::from_re(t).derivative3(),
@@ -191,17 +239,23 @@ pub fn jet(x: f64, y: f64, t: f64) -> Jet {
 }
 
 /// F, ∂_x F, ∂_y F and ü at a point (four hyper-dual evaluations).
-fn second_derivatives(x: f64, y: f64, t: f64) -> (Mat2<f64>, [Mat2<f64>; 2], [f64; 2]) {
+fn second_derivatives(
+    field: ManufacturedField,
+    x: f64,
+    y: f64,
+    t: f64,
+) -> (Mat2<f64>, [Mat2<f64>; 2], [f64; 2]) {
     type H = HyperDual64;
     let both = |v: f64| H::new(v, 1.0, 1.0, 0.0);
-    let xx = displacement(both(x), H::from_re(y), H::from_re(t));
-    let yy = displacement(H::from_re(x), both(y), H::from_re(t));
-    let xy = displacement(
+    let u = |x: H, y: H, t: H| field.displacement(x, y, t);
+    let xx = u(both(x), H::from_re(y), H::from_re(t));
+    let yy = u(H::from_re(x), both(y), H::from_re(t));
+    let xy = u(
         H::from_re(x).derivative1(),
         H::from_re(y).derivative2(),
         H::from_re(t),
     );
-    let tt = displacement(H::from_re(x), H::from_re(y), both(t));
+    let tt = u(H::from_re(x), H::from_re(y), both(t));
     let mut f = [[0.0; 2]; 2];
     let mut df = [[[0.0; 2]; 2]; 2];
     for i in 0..2 {
@@ -256,6 +310,8 @@ pub struct DynamicManufactured {
     /// r of the normal compliance r p_+ (BDS (1.8)).
     pub stiffness: f64,
     pub final_time: f64,
+    /// The exact displacement.
+    pub field: ManufacturedField,
 }
 
 impl DynamicManufactured {
@@ -272,14 +328,24 @@ impl DynamicManufactured {
             density: 1.0,
             stiffness: 20.0,
             final_time: 1.0,
+            field: ManufacturedField::Smooth,
         }
     }
 
+    /// The same problem with the exact displacement `field`.
+    pub fn with_field(self, field: ManufacturedField) -> Self {
+        Self { field, ..self }
+    }
+
     fn id(&self) -> u64 {
-        match self.law {
+        let law = match self.law {
             ManufacturedLaw::Linear => 1,
             ManufacturedLaw::StVenantKirchhoff => 2,
             ManufacturedLaw::NeoHooke => 3,
+        };
+        match self.field {
+            ManufacturedField::Smooth => law,
+            ManufacturedField::Affine => 10 + law,
         }
     }
 
@@ -308,7 +374,7 @@ impl DynamicManufactured {
         if let Some(v) = hit {
             return v;
         }
-        let (f, df, acc) = second_derivatives(x, y, t);
+        let (f, df, acc) = second_derivatives(self.field, x, y, t);
         let p = self.law.piola(self.lambda, self.mu, f);
         // ∂_k Π from Π(F + ε ∂_k F)
         let dp: [Mat2<f64>; 2] = std::array::from_fn(|k| {
@@ -328,7 +394,7 @@ impl DynamicManufactured {
 
     /// The penetration p = 0 − u_y(x, 0, t) on Γ3.
     pub fn penetration(&self, x: f64, t: f64) -> f64 {
-        -displacement(x, 0.0, t)[1]
+        -self.field.displacement(x, 0.0, t)[1]
     }
 
     /// The load on `side`: Π ν on Γ2; Π ν − r p_+ e_y on Γ3.
@@ -394,7 +460,7 @@ impl DynamicManufactured {
         nodes
             .iter()
             .flat_map(|p| {
-                let j = jet(p[0], p[1], t);
+                let j = jet_of(self.field, p[0], p[1], t);
                 if velocity {
                     j.velocity
                 } else {
