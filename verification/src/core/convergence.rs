@@ -14,7 +14,7 @@ use serde::Deserialize;
 use crate::core::case::Case;
 use crate::core::context::RunContext;
 use crate::core::format::{invalid, CaseError};
-use crate::core::gate::{Check, GateVerdict, ModelCriteria, RateGate};
+use crate::core::gate::{ModelCriteria, RateGate};
 use crate::core::report::case_report::CaseReport;
 use crate::core::study::{run_sweeps, Study};
 use crate::core::sweep::{Against, SweepReport, SweepSpec};
@@ -76,28 +76,12 @@ impl<'de, S: serde::de::DeserializeOwned> Deserialize<'de> for ModelGate<S> {
     }
 }
 
-/// `[[reference]]`: a pinned value of one run.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReferenceSpec<S: Default> {
-    pub name: String,
-    /// An error functional, or `u_end` (the study's end value).
-    pub quantity: String,
-    pub elements: usize,
-    pub steps: usize,
-    #[serde(default)]
-    pub scheme: S,
-    pub value: f64,
-    pub relative_tolerance: f64,
-}
-
 /// The generic part of a convergence case.
 #[derive(Debug, Clone)]
 pub struct ConvergenceSpec<S: Default> {
     pub sweeps: Vec<SweepSpec<S>>,
     pub gates: Vec<RateGate<SweepSelect<S>>>,
     pub model_gates: Vec<ModelGate<S>>,
-    pub references: Vec<ReferenceSpec<S>>,
 }
 
 /// The sections of a convergence case body that the core reads.
@@ -110,13 +94,12 @@ struct Sections<S: Default> {
     gate: Vec<RateGate<SweepSelect<S>>>,
     #[serde(default)]
     model_gate: Vec<ModelGate<S>>,
-    #[serde(default)]
-    reference: Vec<ReferenceSpec<S>>,
 }
 
 /// A convergence case body: the family's keys, read into its format `F` (which denies unknown
 /// keys: the scene, the exact solution, the discretization options), and the core's sections
-/// `[[sweep]]`, `[[gate]]`, `[[model_gate]]` and `[[reference]]`.
+/// `[[sweep]]`, `[[gate]]` and `[[model_gate]]`. (No pinned values: a gate compares with an exact
+/// solution, a manufactured one or a second implementation, never with a previous run's output.)
 #[derive(Debug, Clone)]
 pub struct ConvergenceCase<F, S: Default> {
     pub family: F,
@@ -128,12 +111,11 @@ impl<F: DeserializeOwned, S: DeserializeOwned + Copy + Default> ConvergenceCase<
     /// names `errors` (the family checks its own keys).
     pub fn parse(case: &Case, errors: &[&str]) -> Result<Self, CaseError> {
         let (sections, family): (Sections<S>, F) =
-            case.body_split(&["sweep", "gate", "model_gate", "reference"])?;
+            case.body_split(&["sweep", "gate", "model_gate"])?;
         let spec = ConvergenceSpec {
             sweeps: sections.sweep,
             gates: sections.gate,
             model_gates: sections.model_gate,
-            references: sections.reference,
         };
         spec.check(case.path(), errors)?;
         Ok(Self { family, spec })
@@ -141,7 +123,7 @@ impl<F: DeserializeOwned, S: DeserializeOwned + Copy + Default> ConvergenceCase<
 }
 
 impl<S: Copy + Default> ConvergenceSpec<S> {
-    /// Checks sweeps, gates and references against the study's error names (`errors`).
+    /// Checks sweeps and gates against the study's error names (`errors`).
     pub fn check(&self, path: &Path, errors: &[&str]) -> Result<(), CaseError> {
         for (i, s) in self.sweeps.iter().enumerate() {
             s.check(path, &format!("sweep[{i}]"))?;
@@ -187,17 +169,7 @@ impl<S: Copy + Default> ConvergenceSpec<S> {
                 ));
             }
         }
-        for (i, r) in self.references.iter().enumerate() {
-            if r.quantity != "u_end" && !errors.contains(&r.quantity.as_str()) {
-                return Err(invalid(
-                    path,
-                    &format!("reference[{i}].quantity"),
-                    &r.quantity,
-                    &format!("u_end or {expected_error}"),
-                ));
-            }
-        }
-        if self.sweeps.is_empty() && self.references.is_empty() {
+        if self.sweeps.is_empty() {
             return Err(invalid(
                 path,
                 "sweep",
@@ -228,7 +200,7 @@ fn find<'a>(
     }
 }
 
-/// Runs the sweeps, evaluates the rate and model gates and the references, and plots the gated
+/// Runs the sweeps, evaluates the rate and model gates, and plots the gated
 /// errors.
 pub fn run<T: Study>(
     spec: &ConvergenceSpec<T::Scheme>,
@@ -277,46 +249,8 @@ pub fn run<T: Study>(
         let name = format!("{}: {} ≈ {form}", g.sweeps.join(" + "), g.error);
         gates.push(g.criteria.evaluate(name, &h, &k, &e));
     }
-    for r in &spec.references {
-        gates.push(reference_gate(r, study)?);
-    }
     report.gates = gates;
     convergence_plots(spec, ctx, report)
-}
-
-/// Runs a reference level and compares the pinned quantity.
-fn reference_gate<T: Study>(
-    r: &ReferenceSpec<T::Scheme>,
-    study: &T,
-) -> Result<GateVerdict, String> {
-    let level = study
-        .run_level(r.elements, r.steps, r.scheme, false)
-        .map_err(|e| format!("reference `{}`: {e}", r.name))?;
-    let observed = if r.quantity == "u_end" {
-        level.u_end
-    } else {
-        level.errors.get(&r.quantity).copied().unwrap_or(f64::NAN)
-    };
-    let rel = ((observed - r.value) / r.value).abs();
-    let mut check = Check::at_most(
-        &format!(
-            "{} (M = {}, N = {}, {}): relative deviation from {:.12e}",
-            r.quantity, r.elements, r.steps, r.scheme, r.value
-        ),
-        rel,
-        r.relative_tolerance,
-    );
-    if !rel.is_finite() {
-        check.passed = false;
-    }
-    let mut v = GateVerdict::from_checks(
-        format!("reference: {}", r.name),
-        "reference",
-        vec![check],
-        &format!("observed {observed:.12e}"),
-    );
-    v.passed = v.passed && rel.is_finite();
-    Ok(v)
 }
 
 /// One log–log plot per (sweep, parameter) of the gated errors, with the expected slopes.

@@ -1,6 +1,6 @@
 //! Kind `plane_convergence`: sweeps in h and k against a manufactured solution of the plane body
 //! (data by automatic differentiation of formulas in `manufactured/plane.rs`), with the core's
-//! rate gates, error-model gates and references.
+//! rate gates and error-model gates.
 
 use serde::Deserialize;
 
@@ -14,7 +14,7 @@ use crate::core::report::case_report::CaseReport;
 use crate::plane::errors::PLANE_ERRORS;
 use crate::plane::study::{Discretization, ExactSpec, PlaneStudy};
 
-/// The plane's keys of a `plane_convergence` body (the sweeps, gates and references are the
+/// The plane's keys of a `plane_convergence` body (the sweeps and gates are the
 /// core's).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -53,16 +53,6 @@ pub fn parse(case: &Case) -> Result<ConvergenceCase, CaseError> {
             return Err(invalid(
                 case.path(),
                 &format!("model_gate[{i}].error"),
-                SAME_CODE_ERROR,
-                expected,
-            ));
-        }
-    }
-    for (i, r) in c.spec.references.iter().enumerate() {
-        if r.quantity == SAME_CODE_ERROR {
-            return Err(invalid(
-                case.path(),
-                &format!("reference[{i}].quantity"),
                 SAME_CODE_ERROR,
                 expected,
             ));

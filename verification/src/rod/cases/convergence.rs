@@ -2,7 +2,7 @@
 //! the constant-data family, or a manufactured one), rate gates with confidence intervals, joint
 //! error-model gates, pinned reference values, and the paper's solution figures.
 //!
-//! The sweeps, gates and references are the core's ([`crate::core::convergence`]); this file adds
+//! The sweeps and gates are the core's ([`crate::core::convergence`]); this file adds
 //! the rod's study and the paper's figures.
 
 use serde::Deserialize;
@@ -18,7 +18,7 @@ use crate::rod::cases::paper_figures::{self, FiguresSpec};
 use crate::rod::errors::ROD_ERRORS;
 use crate::rod::study::{Discretization, ExactSpec, RodStudy};
 
-/// The rod's keys of a `rod_convergence` body (the sweeps, gates and references are the core's).
+/// The rod's keys of a `rod_convergence` body (the sweeps and gates are the core's).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RodKeys {
