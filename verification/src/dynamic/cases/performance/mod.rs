@@ -273,7 +273,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         if full {
             head.extend(["force (ms)", "tangent assembly (ms)"]);
         }
-        head.push("ratio");
+        head.push("ratio (timing)");
         let rows = levels
             .iter()
             .map(|l| {
