@@ -5,6 +5,7 @@
 pub mod case;
 pub mod context;
 pub mod convergence;
+pub mod cpu_clock;
 pub mod format;
 pub mod gate;
 pub mod overrides;
