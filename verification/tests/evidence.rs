@@ -8,11 +8,16 @@ use contactlab_verify::core::case::Tier;
 use contactlab_verify::core::context::RunContext;
 use contactlab_verify::core::report::metadata::Metadata;
 use contactlab_verify::registry;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 fn cases_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases")
 }
 
+/// `CONTACTLAB_EVIDENCE_FAIL_FAST=1` (set by the mutation campaign, `reports/mutants.md`): once a
+/// case has failed, the cases not yet started are skipped — the verdict is the same, a caught
+/// mutant costs seconds instead of the whole tier.
 #[test]
 fn every_quick_case_passes_its_gates() {
     let cases = registry::load_all(&cases_dir()).expect("the catalogue loads");
@@ -21,15 +26,24 @@ fn every_quick_case_passes_its_gates() {
         metadata: Metadata::collect("test"),
         progress: false,
     };
-    let mut failed = Vec::new();
-    let mut ran = 0;
-    for case in cases
+    let fail_fast = std::env::var_os("CONTACTLAB_EVIDENCE_FAIL_FAST").is_some_and(|v| v == "1");
+    let stop = AtomicBool::new(false);
+    let quick: Vec<_> = cases
         .iter()
         .filter(|c| c.header.tier == Tier::Quick && !c.header.kind.ends_with("_performance"))
-    {
-        ran += 1;
-        let r = registry::run(case, &ctx);
-        if !r.passed {
+        .collect();
+    // The cases are independent (each writes under its own id): run them on all cores.
+    let failed: Vec<String> = quick
+        .par_iter()
+        .filter_map(|case| {
+            if fail_fast && stop.load(Ordering::Relaxed) {
+                return None;
+            }
+            let r = registry::run(case, &ctx);
+            if r.passed {
+                return None;
+            }
+            stop.store(true, Ordering::Relaxed);
             let gates: Vec<String> = r
                 .gates
                 .iter()
@@ -44,15 +58,15 @@ fn every_quick_case_passes_its_gates() {
                     format!("{}: {}", g.name, checks.join("; "))
                 })
                 .collect();
-            failed.push(format!(
+            Some(format!(
                 "{}: {}{}",
                 r.id,
                 r.failure.clone().unwrap_or_default(),
                 gates.join(" | ")
-            ));
-        }
-    }
+            ))
+        })
+        .collect();
     let _ = std::fs::remove_dir_all(&ctx.out_dir);
-    assert!(ran >= 20, "only {ran} quick cases");
+    assert!(quick.len() >= 20, "only {} quick cases", quick.len());
     assert!(failed.is_empty(), "failing cases:\n{}", failed.join("\n"));
 }

@@ -24,7 +24,8 @@
 //!   boundary terms R_P (58)–(60) and R_Q (61)–(64) that decide them.
 //! - [`stability`]: verdicts (stable, marginal, divergence, flutter) with a justified round-off
 //!   tolerance; [`branches`]: eigenvalue branches along a sweep; [`stability_map`]: verdicts on
-//!   a parameter grid, parallel over points and deterministic.
+//!   a parameter grid, parallel over points and deterministic; [`resolution`]: the eigenvalues
+//!   that stand for the continuum (the rest is the basis's: a warning, never the verdict).
 
 /// The dense matrix and complex types of this module's public API (faer 0.24), re-exported so
 /// that users (and the verification crate) need no direct dependency on faer.
@@ -50,6 +51,7 @@ pub mod disc;
 pub mod finite_element_basis;
 pub mod friction;
 pub mod properties;
+pub mod resolution;
 pub mod stability;
 pub mod stability_map;
 pub mod string_data;

@@ -14,6 +14,11 @@
 //! approaches such Jordan blocks to 1e-14 and measures at most 4e-10 ρ below the onset (exact
 //! real part 0). The price is a blind zone: a true growth or decay rate below τ is reported
 //! `Marginal`, never as a wrong kind of (in)stability.
+//!
+//! Discretized continua: only the eigenvalues below the basis's resolution limit ω_res
+//! (`resolution.rs`) stand for the continuum. [`assess_resolved`] reads the verdict from them
+//! alone and reports the unstable eigenvalues above ω_res separately (their count, frequency range
+//! and largest real part) as a discretization warning — never as the system's verdict.
 
 use faer::c64;
 use serde::{Deserialize, Serialize};
@@ -66,6 +71,10 @@ pub struct VerdictParams {
     pub relative_tolerance: f64,
     /// τ_abs: the floor when ρ is tiny.
     pub absolute_tolerance: f64,
+    /// Read the verdict from the resolved eigenvalues only (the default; `resolution.rs`).
+    /// `false` reads every eigenvalue: for a low-order model meant as the model itself (a
+    /// one-mode string), not as an approximation of the continuum.
+    pub resolved_only: bool,
 }
 
 impl Default for VerdictParams {
@@ -73,6 +82,7 @@ impl Default for VerdictParams {
         Self {
             relative_tolerance: 1e-7,
             absolute_tolerance: 1e-12,
+            resolved_only: true,
         }
     }
 }
@@ -109,17 +119,76 @@ pub struct StabilityAssessment {
     pub real_unstable_eigenvalues: usize,
     /// ρ = max |λ|.
     pub spectral_scale: f64,
+    /// The resolution limit ω_res: the verdict reads the eigenvalues with |Im λ| ≤ ω_res
+    /// (infinite: every eigenvalue).
+    pub resolution_limit: f64,
+    /// The discretization warning: the unstable eigenvalues (Re λ > τ) above ω_res.
+    pub unresolved: UnresolvedInstability,
 }
 
-/// Classifies the eigenvalues (see the module docs). An empty spectrum is `Marginal`.
+/// Unstable eigenvalues above the resolution limit: the basis's, not the continuum's.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct UnresolvedInstability {
+    /// Their number (0: no warning).
+    pub count: usize,
+    /// The smallest and largest |Im λ| among them (0 when there are none).
+    pub frequency_from: f64,
+    pub frequency_to: f64,
+    /// Their largest real part (0 when there are none).
+    pub max_real_part: f64,
+}
+
+impl UnresolvedInstability {
+    /// True when some eigenvalue above the resolution limit is unstable.
+    pub fn is_present(&self) -> bool {
+        self.count > 0
+    }
+}
+
+/// Classifies the eigenvalues (see the module docs); every eigenvalue counts. An empty spectrum
+/// is `Marginal`.
 pub fn assess(eigenvalues: &[c64], params: &VerdictParams) -> StabilityAssessment {
+    assess_resolved(eigenvalues, params, f64::INFINITY)
+}
+
+/// Classifies the eigenvalues with |Im λ| ≤ `resolution_limit` (see the module docs) and
+/// reports the unstable ones above it as [`UnresolvedInstability`]; with
+/// `params.resolved_only = false` the limit is ignored (every eigenvalue counts). The tolerance τ
+/// is taken from the whole spectrum (the round-off of the eigensolver scales with all of it). No
+/// resolved eigenvalue: `Marginal`.
+pub fn assess_resolved(
+    eigenvalues: &[c64],
+    params: &VerdictParams,
+    resolution_limit: f64,
+) -> StabilityAssessment {
+    let resolution_limit = if params.resolved_only {
+        resolution_limit
+    } else {
+        f64::INFINITY
+    };
     let rho = eigenvalues.iter().map(|l| l.norm()).fold(0.0, f64::max);
     let tol = (params.relative_tolerance * rho).max(params.absolute_tolerance);
-    let mut crit = c64::new(f64::NEG_INFINITY, 0.0);
+    let mut crit: Option<c64> = None;
     let (mut unstable, mut real_unstable) = (0, 0);
+    let mut unresolved = UnresolvedInstability {
+        count: 0,
+        frequency_from: f64::INFINITY,
+        frequency_to: 0.0,
+        max_real_part: f64::NEG_INFINITY,
+    };
     for &l in eigenvalues {
-        if l.re > crit.re || (l.re == crit.re && l.im.abs() < crit.im.abs()) {
-            crit = l;
+        let resolved = l.im.abs() <= resolution_limit;
+        if !resolved {
+            if l.re > tol {
+                unresolved.count += 1;
+                unresolved.frequency_from = unresolved.frequency_from.min(l.im.abs());
+                unresolved.frequency_to = unresolved.frequency_to.max(l.im.abs());
+                unresolved.max_real_part = unresolved.max_real_part.max(l.re);
+            }
+            continue;
+        }
+        if crit.is_none_or(|c| l.re > c.re || (l.re == c.re && l.im.abs() < c.im.abs())) {
+            crit = Some(l);
         }
         if l.re > tol {
             unstable += 1;
@@ -128,9 +197,11 @@ pub fn assess(eigenvalues: &[c64], params: &VerdictParams) -> StabilityAssessmen
             }
         }
     }
-    if eigenvalues.is_empty() {
-        crit = c64::new(0.0, 0.0);
+    if unresolved.count == 0 {
+        unresolved.frequency_from = 0.0;
+        unresolved.max_real_part = 0.0;
     }
+    let crit = crit.unwrap_or(c64::new(0.0, 0.0));
     let verdict = if crit.re > tol {
         if crit.im.abs() <= tol {
             Verdict::Divergence
@@ -151,6 +222,8 @@ pub fn assess(eigenvalues: &[c64], params: &VerdictParams) -> StabilityAssessmen
         unstable_eigenvalues: unstable,
         real_unstable_eigenvalues: real_unstable,
         spectral_scale: rho,
+        resolution_limit,
+        unresolved,
     }
 }
 
@@ -179,6 +252,53 @@ mod tests {
             (3, 1)
         );
         assert_eq!(assess(&[], &p).verdict, Verdict::Marginal);
+    }
+
+    #[test]
+    fn unstable_eigenvalues_above_the_resolution_limit_are_a_warning_not_the_verdict() {
+        let p = VerdictParams::default();
+        let spectrum = [
+            c(-0.1, 3.0),
+            c(-0.1, -3.0),
+            c(0.5, 90.0),
+            c(0.5, -90.0),
+            c(0.2, 70.0),
+            c(0.2, -70.0),
+        ];
+        let a = assess_resolved(&spectrum, &p, 50.0);
+        assert_eq!(a.verdict, Verdict::Stable);
+        assert_eq!((a.critical_re, a.critical_im), (-0.1, 3.0));
+        assert_eq!(a.unstable_eigenvalues, 0);
+        assert_eq!(a.unresolved.count, 4);
+        assert_eq!(
+            (a.unresolved.frequency_from, a.unresolved.frequency_to),
+            (70.0, 90.0)
+        );
+        assert_eq!(a.unresolved.max_real_part, 0.5);
+        // τ from the whole spectrum
+        assert_eq!(a.tolerance, 1e-7 * c(0.5, 90.0).norm());
+        // an unstable resolved eigenvalue decides; the warning stays
+        let b = assess_resolved(&[c(0.01, 40.0), c(0.01, -40.0), c(0.5, 90.0)], &p, 50.0);
+        assert_eq!(b.verdict, Verdict::Flutter);
+        assert_eq!((b.unstable_eigenvalues, b.unresolved.count), (2, 1));
+        // the limit itself is resolved; real eigenvalues always are
+        let e = assess_resolved(&[c(0.3, 0.0), c(-0.2, 50.0)], &p, 50.0);
+        assert_eq!(e.verdict, Verdict::Divergence);
+        assert_eq!(
+            assess_resolved(&[c(0.3, 0.0)], &p, 0.0).verdict,
+            Verdict::Divergence
+        );
+        // without a limit: the plain verdict
+        assert_eq!(assess(&spectrum, &p).verdict, Verdict::Flutter);
+        let every = VerdictParams {
+            resolved_only: false,
+            ..p
+        };
+        assert_eq!(
+            assess_resolved(&spectrum, &every, 50.0).verdict,
+            Verdict::Flutter
+        );
+        assert!(!assess(&spectrum, &p).unresolved.is_present());
     }
 
     #[test]

@@ -16,7 +16,10 @@ use faer::{c64, Mat};
 use serde::Serialize;
 
 use crate::error::{Error, InputError, SolveError};
-use crate::model::moving::stability::{assess, StabilityAssessment, Verdict, VerdictParams};
+use crate::model::moving::resolution::model_resolution_limit;
+use crate::model::moving::stability::{
+    assess, assess_resolved, StabilityAssessment, Verdict, VerdictParams,
+};
 use crate::model::moving::string_data::{MovingStringData, StringParameter};
 use crate::model::moving::string_model::MovingStringModel;
 use crate::model::moving::system::MovingSystem;
@@ -100,7 +103,8 @@ impl Default for StabilityMapParams {
     }
 }
 
-/// The verdicts on a grid.
+/// The verdicts on a grid: each read from the eigenvalues below the model's resolution limit
+/// (`resolution.rs`), with the unstable ones above it reported as the point's warning.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StabilityMap {
     pub x: GridAxis,
@@ -123,6 +127,15 @@ impl StabilityMap {
     /// The number of points with `verdict`.
     pub fn count(&self, verdict: Verdict) -> usize {
         self.points.iter().filter(|p| p.verdict == verdict).count()
+    }
+
+    /// The number of points with a discretization warning (unstable eigenvalues above the
+    /// resolution limit).
+    pub fn count_unresolved(&self) -> usize {
+        self.points
+            .iter()
+            .filter(|p| p.unresolved.is_present())
+            .count()
     }
 }
 
@@ -286,8 +299,9 @@ pub fn string_stability_map(
                 let mut d = *base;
                 x.parameter.set(&mut d, xv)?;
                 y.parameter.set(&mut d, y.values[iy])?;
+                let limit = model_resolution_limit(model, d.speed);
                 let ev = ws.eigenvalues(model, &d, params.eigen)?;
-                row.push(assess(ev, &params.verdict));
+                row.push(assess_resolved(ev, &params.verdict, limit));
             }
             Ok(row)
         },
@@ -351,6 +365,7 @@ fn line_map(
             other.parameter.set(&mut d, other.values[il])?;
             line_axis.parameter.set(&mut d, 0.0)?;
             let at = || describe(&d);
+            let limit = model_resolution_limit(model, d.speed);
             let system = model.system(&d)?;
             let mut solver = QuadraticEigenSolver::new(system.mass.as_ref(), params.eigen)
                 .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
@@ -390,7 +405,7 @@ fn line_map(
                         .zip(&im)
                         .map(|(a, b)| c64::new(gamma * a, gamma * b)),
                 );
-                out.push(assess(&ev, &params.verdict));
+                out.push(assess_resolved(&ev, &params.verdict, limit));
             }
             Ok(out)
         },

@@ -6,7 +6,8 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::model::moving::branches::{track_branches, EigenBranches};
-use crate::model::moving::stability::{assess, StabilityAssessment, VerdictParams};
+use crate::model::moving::resolution::model_resolution_limit;
+use crate::model::moving::stability::{assess_resolved, StabilityAssessment, VerdictParams};
 use crate::model::moving::stability_map::{parallel_rows, GridAxis, StringWorkspace};
 use crate::model::moving::string_data::MovingStringData;
 use crate::model::moving::string_model::MovingStringModel;
@@ -35,17 +36,19 @@ pub fn string_sweep(
 ) -> Result<Sweep, Error> {
     verdict.validate()?;
     base.validate()?;
-    let (spectra, _) = parallel_rows(
+    let (points, _) = parallel_rows(
         axis.values.len(),
         threads,
         || StringWorkspace::new(model, base),
-        |i, ws: &mut StringWorkspace| -> Result<Vec<c64>, Error> {
+        |i, ws: &mut StringWorkspace| -> Result<(Vec<c64>, StabilityAssessment), Error> {
             let mut d = *base;
             axis.parameter.set(&mut d, axis.values[i])?;
-            Ok(ws.eigenvalues(model, &d, eigen)?.to_vec())
+            let ev = ws.eigenvalues(model, &d, eigen)?.to_vec();
+            let a = assess_resolved(&ev, verdict, model_resolution_limit(model, d.speed));
+            Ok((ev, a))
         },
     )?;
-    let assessments = spectra.iter().map(|s| assess(s, verdict)).collect();
+    let (spectra, assessments): (Vec<_>, Vec<_>) = points.into_iter().unzip();
     let branches = track_branches(&axis.values, &spectra)?;
     Ok(Sweep {
         axis: axis.clone(),

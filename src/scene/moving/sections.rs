@@ -13,6 +13,8 @@ use crate::solve::quadratic_eigen::EigenKernel;
 pub struct StabilitySection {
     pub relative_tolerance: Option<f64>,
     pub absolute_tolerance: Option<f64>,
+    /// Verdicts from the resolved eigenvalues only (default true; `model::moving::resolution`).
+    pub resolved_only: Option<bool>,
     #[serde(default)]
     pub threads: usize,
     #[serde(default)]
@@ -93,6 +95,7 @@ pub(super) fn verdict_params(s: &StabilitySection) -> Result<VerdictParams, Inpu
     let p = VerdictParams {
         relative_tolerance: s.relative_tolerance.unwrap_or(d.relative_tolerance),
         absolute_tolerance: s.absolute_tolerance.unwrap_or(d.absolute_tolerance),
+        resolved_only: s.resolved_only.unwrap_or(d.resolved_only),
     };
     p.validate()?;
     if s.threads > 1024 {

@@ -22,17 +22,28 @@
 //! i.e. the friction opens a jump of the displacement, and the transport 2v̄ ẇ' across that jump
 //! adds a point force 2v̄λ[W]. For p = 0 the jump closes and the conditions are those of the thin
 //! string (`moving_string::OscillatorCharacteristic`). With l = f_L(ā), l' = f_L'(ā),
-//! r = f_R(ā), r' = f_R'(ā) the two conditions are linear in (A, B); their determinant times
-//! D² = (m̄λ² + c̄)² (which clears the poles of g) is the characteristic function F(λ):
+//! r = f_R(ā), r' = f_R'(ā) the two conditions are linear in (A, B); with each row multiplied
+//! by D = m̄λ² + c̄ (which clears the pole of g) the system reads
 //!
 //! ```text
-//!   row 1:  A (−b l − (pG/4) l)               + B (b r − (pG/4) r)
-//!   row 2:  A (b l' − 2v̄λ l + (c̄G/2) l)      + B (−b r' + 2v̄λ r + (c̄G/2) r),   G = g D = m̄λ²,
+//!   row 1:  A (−D b l − (pG/4) l)                 + B (D b r − (pG/4) r)
+//!   row 2:  A (D (b l' − 2v̄λ l) + (c̄G/2) l)      + B (D (−b r' + 2v̄λ r) + (c̄G/2) r),
+//!
+//!   G = g D = m̄λ².
 //! ```
 //!
-//! each row multiplied by D. Swapping s₁ and s₂ changes the sign of both columns, so F does not
-//! depend on the branch of the square root. F also vanishes where s₁ = s₂ (λ = 0, λ = −bᾱ), which
-//! are not eigenvalues.
+//! Writing entry (i, j) as D α_ij + G β_ij, the β rows are parallel (both ∝ (l, r)), so
+//! det β = 0 and the determinant is D times
+//!
+//! ```text
+//!   F(λ) = D det α + G (α₁₁β₂₂ + β₁₁α₂₂ − α₁₂β₂₁ − β₁₂α₂₁),
+//! ```
+//!
+//! the function used. (The determinant itself vanishes at D = 0, λ = ±i sqrt(c̄/m̄), for every
+//! p: a spurious root at the oscillator's bare frequency, found at v̄ = 0.9 of the map's data,
+//! where a string mode passes near it.) Swapping s₁ and s₂ changes the sign of both columns, so F
+//! does not depend on the branch of the square root. F also vanishes where s₁ = s₂ (λ = 0,
+//! λ = −bᾱ), which are not eigenvalues.
 
 use nalgebra::Complex;
 
@@ -59,11 +70,14 @@ pub fn characteristic(d: &ThickString, lambda: C64) -> C64 {
     let p = d.control;
     let c = d.stiffness;
     let two_v_l = lambda * (2.0 * v);
-    let a11 = -(dd * b + gg * (p / 4.0)) * l;
-    let a12 = (dd * b - gg * (p / 4.0)) * r;
-    let a21 = dd * (dl * b - two_v_l * l) + gg * (c / 2.0) * l;
-    let a22 = dd * (-dr * b + two_v_l * r) + gg * (c / 2.0) * r;
-    a11 * a22 - a12 * a21
+    // Entry (i, j) of the D-multiplied system is D α_ij + G β_ij.
+    let (al11, al12) = (-(l * b), r * b);
+    let (al21, al22) = (dl * b - two_v_l * l, -(dr * b) + two_v_l * r);
+    let (be11, be12) = (-(l * (p / 4.0)), -(r * (p / 4.0)));
+    let (be21, be22) = (l * (c / 2.0), r * (c / 2.0));
+    // det = D² det α + D G (α11 β22 + β11 α22 − α12 β21 − β12 α21) + G² det β, det β = 0:
+    // F̂ = det / D.
+    dd * (al11 * al22 - al12 * al21) + gg * (al11 * be22 + be11 * al22 - al12 * be21 - be12 * al21)
 }
 
 /// The root of `f` near `guess` by the secant method, to |Δλ| ≤ 4ε max(|λ|, 1).
@@ -174,6 +188,91 @@ pub fn branch_onset(
     let mid = 0.5 * (lo + hi);
     let r = continuum_root(&ThickString { control: mid, ..*d }, 0.5 * (r_lo + r_hi))?;
     Ok(Some((mid, r)))
+}
+
+/// The roots of F at p = 0 (the control of `d` is ignored) near the lowest `count` frequencies of
+/// the independent sine-Galerkin model with `guess_modes` functions (Im λ > 0), each refined to a
+/// root of F; an error when a root lands far from its guess or two guesses find the same root.
+pub fn roots_at_rest(
+    d: &ThickString,
+    guess_modes: usize,
+    count: usize,
+) -> Result<Vec<C64>, String> {
+    let d0 = ThickString { control: 0.0, ..*d };
+    let mut guess: Vec<C64> = d0
+        .galerkin_eigenvalues(guess_modes)?
+        .into_iter()
+        .filter(|l| l.im > 0.0)
+        .collect();
+    guess.sort_by(|a, b| a.im.total_cmp(&b.im));
+    let mut roots = Vec::new();
+    for g in guess.into_iter().take(count) {
+        let r = continuum_root(&d0, g)?;
+        if (r - g).norm() > 0.05 * g.norm() {
+            return Err(format!("the root {r} is far from its guess {g}"));
+        }
+        if roots.iter().any(|x: &C64| (x - r).norm() < 1e-8 * r.norm()) {
+            return Err(format!("two guesses found the same root {r}"));
+        }
+        roots.push(r);
+    }
+    Ok(roots)
+}
+
+/// The continuum's flutter onset: see [`continuum_onset`].
+#[derive(Debug, Clone, Copy)]
+pub struct ContinuumOnset {
+    /// p*, the smallest onset over the followed branches.
+    pub onset: f64,
+    /// The critical root at p*.
+    pub critical: C64,
+    /// The largest Re λ of the other followed branches at p*.
+    pub others_max_re: f64,
+    /// The number of branches followed.
+    pub branches: usize,
+}
+
+/// The flutter onset of the continuum `d` (its control ignored): the lowest `branches` roots at
+/// p = 0 ([`roots_at_rest`]) each followed in (0, `p_max`] ([`branch_onset`], `steps` steps,
+/// bisection to 1e-13 p_max); p* is the smallest onset, and the other branches are followed to
+/// p* to report their largest real part there. `None` when every followed branch stays stable
+/// up to `p_max`.
+pub fn continuum_onset(
+    d: &ThickString,
+    guess_modes: usize,
+    branches: usize,
+    p_max: f64,
+    steps: usize,
+) -> Result<Option<ContinuumOnset>, String> {
+    let start = roots_at_rest(d, guess_modes, branches)?;
+    let d0 = ThickString { control: 0.0, ..*d };
+    let mut best: Option<(f64, C64)> = None;
+    for &g in &start {
+        if let Some((p, l)) = branch_onset(&d0, g, p_max, steps, 1e-13 * p_max)? {
+            if best.is_none_or(|b| p < b.0) {
+                best = Some((p, l));
+            }
+        }
+    }
+    let Some((p_star, crit)) = best else {
+        return Ok(None);
+    };
+    let controls: Vec<f64> = (0..=steps)
+        .map(|i| p_star * i as f64 / steps as f64)
+        .collect();
+    let mut others: f64 = f64::NEG_INFINITY;
+    for &g in &start {
+        let r = track_in_control(&d0, g, &controls)?[steps];
+        if (r - crit).norm() > 1e-6 * crit.norm() {
+            others = others.max(r.re);
+        }
+    }
+    Ok(Some(ContinuumOnset {
+        onset: p_star,
+        critical: crit,
+        others_max_re: others,
+        branches: start.len(),
+    }))
 }
 
 #[cfg(test)]

@@ -118,6 +118,21 @@ pub fn map_figure(
             f = f.series(Series::markers(v.name(), pts).color(verdict_color(v)));
         }
     }
+    // The second layer: points whose unresolved eigenvalues (above ω_res) are unstable — the
+    // basis's warning, not the verdict.
+    let mut warn = Vec::new();
+    for iy in (0..ny).step_by(sy) {
+        for ix in (0..nx).step_by(sx) {
+            if map.at(ix, iy).is_some_and(|a| a.unresolved.is_present()) {
+                warn.push((map.x.values[ix], map.y.values[iy]));
+            }
+        }
+    }
+    if !warn.is_empty() {
+        f = f.series(
+            Series::markers("unstable above ω_res (discretization warning)", warn).color(8),
+        );
+    }
     f.series(
         Series::line("boundary (first unstable point)", boundary(map))
             .color(6)

@@ -6,7 +6,8 @@
 //!   the verdict with its tolerance, the solver's statistics;
 //! - `sweep_<i>.json`: for each sweep, the parameter values, every spectrum, the verdicts and
 //!   growth rates, and the tracked branches;
-//! - `map.json`: the grid, and per point the verdict, max Re λ and the critical eigenvalue;
+//! - `map.json`: the grid, and per point the verdict, max Re λ and the critical eigenvalue, and
+//!   the count of unstable eigenvalues above the resolution limit (the discretization warning);
 //! - SVG plots: the spectrum, the loci and Campbell diagram of each sweep, the map.
 
 use std::path::Path;
@@ -119,20 +120,22 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
                 )?;
             }
             Ok(format!(
-                "{source}: {} at the scene's point (max Re λ = {:.6e}, tolerance {:.1e}), {} eigenvalues{}{}",
+                "{source}: {} at the scene's point (max Re λ = {:.6e}, tolerance {:.1e}), {} eigenvalues{}{}{}",
                 r.assessment.verdict.name(),
                 r.assessment.max_real_part,
                 r.assessment.tolerance,
                 r.eigenvalues.len(),
+                unresolved_warning(&r.assessment),
                 if r.sweeps.is_empty() { String::new() } else { format!(", {} sweep(s)", r.sweeps.len()) },
                 r.map.as_ref().map_or(String::new(), |m| format!(
-                    ", map {} × {}: {} stable, {} marginal, {} divergence, {} flutter",
+                    ", map {} × {}: {} stable, {} marginal, {} divergence, {} flutter ({} points with unstable unresolved eigenvalues: the basis's, not the verdict)",
                     m.x.values.len(),
                     m.y.values.len(),
                     m.count(Verdict::Stable),
                     m.count(Verdict::Marginal),
                     m.count(Verdict::Divergence),
-                    m.count(Verdict::Flutter)
+                    m.count(Verdict::Flutter),
+                    m.count_unresolved()
                 ))
             ))
         }
@@ -185,6 +188,21 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
     }
 }
 
+/// The discretization warning of a point: unstable eigenvalues above the resolution limit.
+fn unresolved_warning(a: &StabilityAssessment) -> String {
+    if !a.unresolved.is_present() {
+        return String::new();
+    }
+    format!(
+        "; warning: {} unstable eigenvalue(s) above the resolution limit ω_res = {:.4e} (|Im λ| from {:.4e} to {:.4e}, max Re λ = {:.3e}) — the basis's, not the string's: not part of the verdict; refine the basis to resolve them",
+        a.unresolved.count,
+        a.resolution_limit,
+        a.unresolved.frequency_from,
+        a.unresolved.frequency_to,
+        a.unresolved.max_real_part
+    )
+}
+
 #[derive(Serialize)]
 struct MapJson<'a> {
     x_parameter: &'static str,
@@ -196,6 +214,8 @@ struct MapJson<'a> {
     max_real_part: Vec<f64>,
     critical_eigenvalue: Vec<[f64; 2]>,
     tolerance: Vec<f64>,
+    /// The number of unstable eigenvalues above the resolution limit (the warning layer).
+    unresolved_unstable: Vec<usize>,
 }
 
 fn map_json(m: &StabilityMap) -> MapJson<'_> {
@@ -212,6 +232,7 @@ fn map_json(m: &StabilityMap) -> MapJson<'_> {
             .map(|a| [a.critical_re, a.critical_im])
             .collect(),
         tolerance: m.points.iter().map(|a| a.tolerance).collect(),
+        unresolved_unstable: m.points.iter().map(|a| a.unresolved.count).collect(),
     }
 }
 

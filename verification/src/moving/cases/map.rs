@@ -21,8 +21,10 @@
 use std::path::Path;
 use std::time::Instant;
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use contactlab::model::moving::resolution::model_resolution_limit;
 use contactlab::model::moving::stability::{Verdict, VerdictParams};
 use contactlab::model::moving::stability_map::{
     string_stability_map, GridAxis, StabilityMap, StabilityMapParams,
@@ -34,8 +36,10 @@ use contactlab::solve::quadratic_eigen::{EigenKernel, QuadraticEigenParams};
 use crate::core::context::RunContext;
 use crate::core::format::positive;
 use crate::core::format::CaseError;
-use crate::core::gate::{Check, GateVerdict};
+use crate::core::gate::{Check, GateVerdict, RateCriteria};
 use crate::core::report::case_report::{CaseReport, Table};
+use crate::exact::thick_string_continuum::continuum_onset;
+use crate::exact::thick_string_galerkin::ThickString;
 use crate::moving::errors::max_real_part;
 use crate::moving::plots::{boundary, map_figure};
 use crate::moving::study::{check_growth, flutter_onset, model_eigenvalues, Bushing};
@@ -43,7 +47,7 @@ use crate::plot::{Figure, Series};
 use crate::stats::lcg::Lcg;
 
 /// The case format of `moving_map`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MapCase {
     pub model: MapModel,
@@ -85,6 +89,8 @@ pub struct MapChecks {
     /// |max Re λ (kernel) − max Re λ (faer)| ≤ this × n ε max|λ| (n eigenvalues): two
     /// backward-stable QR iterations on the same companion matrix.
     pub faer_round_off: f64,
+    /// Every this many points of the map, the resolved verdict is recomputed independently.
+    pub resolution_sample_every: usize,
     /// Points of each verdict (stable, flutter) checked by time integration, drawn among those
     /// with |max Re λ| ≥ `time_min_rate` (near the boundary the leading mode needs runs longer
     /// than 1/(σ₁ − σ₂) to dominate; marginal and near-boundary behaviour is checked in
@@ -96,13 +102,30 @@ pub struct MapChecks {
     pub time_relative_tolerance: f64,
 }
 
-/// `[convergence]`.
-#[derive(Debug, Clone, Deserialize, Serialize)]
+/// `[convergence]`: the flutter boundary against the continuum's onset p*(v̄).
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoundaryConvergence {
     pub speeds: Vec<f64>,
+    /// Sine sizes, each with N·ā an integer (the bushing at a node of the last sine).
     pub modes: Vec<usize>,
     pub bisection_tolerance: f64,
+    /// The continuum's branches followed from p = 0 for p*(v̄), and the search range of p.
+    pub onset_branches: usize,
+    pub onset_max: f64,
+    /// Speeds of the continuum's onset line drawn on the map.
+    pub line_speeds: usize,
+    /// The rate gate of |p*_N − p*| / p* against 1/N at every speed (resolved eigenvalues).
+    pub gate: RateCriteria,
+}
+
+/// The onsets at one speed: the continuum's and the program's for each N.
+#[derive(Debug, Clone, Serialize)]
+pub struct BoundaryRow {
+    pub speed: f64,
+    pub continuum: f64,
+    pub resolved: Vec<f64>,
+    pub every_eigenvalue: Vec<f64>,
 }
 
 /// `[low_order]`.
@@ -126,6 +149,19 @@ impl MapCase {
                 self.map.speeds,
                 ">= 2 speeds and controls",
             ));
+        }
+        self.convergence.gate.check(p, "convergence.gate")?;
+        positive(p, "convergence.onset_max", self.convergence.onset_max)?;
+        for &n in &self.convergence.modes {
+            let x = self.model.position * n as f64;
+            if (x - x.round()).abs() > 1e-9 {
+                return Err(crate::core::format::invalid(
+                    p,
+                    "convergence.modes",
+                    n,
+                    &format!("sizes with ā·N an integer (ā = {})", self.model.position),
+                ));
+            }
         }
         if self.convergence.modes.len() < 3 {
             return Err(crate::core::format::invalid(
@@ -161,6 +197,22 @@ fn params(kernel: EigenKernel, threads: usize) -> StabilityMapParams {
     }
 }
 
+/// The one-mode model is the model itself, not an approximation of the string: every
+/// eigenvalue counts (one sine resolves no string mode: n(1 + |v̄|) ≤ 1 fails for v̄ > 0).
+fn low_order_params() -> StabilityMapParams {
+    StabilityMapParams {
+        threads: 0,
+        verdict: VerdictParams {
+            resolved_only: false,
+            ..VerdictParams::default()
+        },
+        eigen: QuadraticEigenParams {
+            kernel: EigenKernel::Faer,
+            ..Default::default()
+        },
+    }
+}
+
 /// User plus system CPU time of this process (Linux `/proc/self/stat`, clock ticks of 1/100 s),
 /// `None` elsewhere.
 fn process_cpu_seconds() -> Option<f64> {
@@ -173,18 +225,52 @@ fn process_cpu_seconds() -> Option<f64> {
     Some((utime + stime) / 100.0)
 }
 
-/// The critical control parameter (max Re λ = 0) at `speed` by bisection, with N sine modes.
+/// The critical control parameter at `speed` by bisection, with N sine modes: (from the
+/// resolved eigenvalues, |Im λ| ≤ ω_res (the library's verdict); from every eigenvalue (the
+/// verdict before issue 16)).
 fn critical_control(
     m: &MapModel,
     modes: usize,
     speed: f64,
     hi: f64,
     rel_tol: f64,
-) -> Result<f64, String> {
+) -> Result<(f64, f64), String> {
     let model = MovingStringModel::new(StringDiscretization::Sine { modes }, Default::default())
         .map_err(|e| e.to_string())?;
-    let at = |p: f64| model_eigenvalues(&model, &base(m, speed, p)).map(|ev| max_real_part(&ev));
-    flutter_onset(at, "p", hi, rel_tol, 1e6).map_err(|e| format!("v̄ = {speed}: {e}"))
+    let limit = model_resolution_limit(&model, speed);
+    let resolved = |p: f64| {
+        model_eigenvalues(&model, &base(m, speed, p)).map(|ev| {
+            ev.iter()
+                .filter(|l| l.im.abs() <= limit)
+                .map(|l| l.re)
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+    };
+    let every = |p: f64| model_eigenvalues(&model, &base(m, speed, p)).map(|ev| max_real_part(&ev));
+    let a =
+        flutter_onset(resolved, "p", hi, rel_tol, 1e6).map_err(|e| format!("v̄ = {speed}: {e}"))?;
+    let b = flutter_onset(every, "p", hi, rel_tol, 1e6).map_err(|e| format!("v̄ = {speed}: {e}"))?;
+    Ok((a, b))
+}
+
+/// The continuum's onset p*(v̄) of the map's string (`exact::thick_string_continuum`); `None`
+/// when no followed branch becomes unstable below `onset_max`.
+fn continuum_critical(
+    m: &MapModel,
+    cv: &BoundaryConvergence,
+    speed: f64,
+) -> Result<Option<f64>, String> {
+    let d = ThickString {
+        speed,
+        damping: m.damping,
+        stiffness: m.stiffness,
+        mass: m.mass,
+        position: m.position,
+        control: 0.0,
+    };
+    continuum_onset(&d, 60, cv.onset_branches, cv.onset_max, 200)
+        .map(|o| o.map(|o| o.onset))
+        .map_err(|e| format!("the continuum at v̄ = {speed}: {e}"))
 }
 
 /// Runs the case.
@@ -304,6 +390,66 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
         ],
         "the map's eigenvalue-only kernel and faer's dense eigensolver on the same companion matrices",
     ));
+    // The resolution limit, independently: a sample of points recomputed from the whole
+    // spectrum, filtered here by |Im λ| ≤ Nπ(1 − |v̄|) (N sines carry N half-waves; the string's
+    // wave against the transport has wavenumber ω/(1 − |v̄|)).
+    let mut sample_mismatch = 0;
+    let mut sample_worst: f64 = 0.0;
+    let mut sampled = 0;
+    let mut sampled_warnings = 0;
+    for i in (0..points).step_by(case.checks.resolution_sample_every.max(1)) {
+        let (ix, iy) = (i % g.speeds, i / g.speeds);
+        let d = base(m, x.values[ix], y.values[iy]);
+        let ev = model_eigenvalues(&model, &d)?;
+        let limit = m.modes as f64 * std::f64::consts::PI * (1.0 - x.values[ix].abs());
+        let resolved_max = ev
+            .iter()
+            .filter(|l| l.im.abs() <= limit)
+            .map(|l| l.re)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let a = &map.points[i];
+        let tol = a.tolerance;
+        let verdict_here = if resolved_max > tol {
+            Some(true)
+        } else if resolved_max < -tol {
+            Some(false)
+        } else {
+            None
+        };
+        let verdict_map = match a.verdict {
+            Verdict::Stable => Some(false),
+            Verdict::Marginal => None,
+            _ => Some(true),
+        };
+        if verdict_here.is_some() && verdict_map.is_some() && verdict_here != verdict_map {
+            sample_mismatch += 1;
+        }
+        sample_worst =
+            sample_worst.max((resolved_max - a.max_real_part).abs() / (unit * a.spectral_scale));
+        sampled += 1;
+        if a.unresolved.is_present() {
+            sampled_warnings += 1;
+        }
+    }
+    report.gates.push(GateVerdict::from_checks(
+        "the map's verdicts read only the resolved eigenvalues (an independent filter)".into(),
+        "exact",
+        vec![
+            Check::holds(
+                &format!(
+                    "{sample_mismatch} of {sampled} sampled points differ in stability ({sampled_warnings} of them carry unstable eigenvalues above ω_res, which the verdict ignores)"
+                ),
+                sample_mismatch == 0 && sampled_warnings > 0,
+                "0 differ, and the sample contains points with unstable unresolved eigenvalues",
+            ),
+            Check::at_most(
+                "max |Δ resolved max Re λ| in units of n ε max|λ|",
+                sample_worst,
+                case.checks.faer_round_off,
+            ),
+        ],
+        "every eigenvalue from faer on a sample of points, filtered by |Im λ| ≤ Nπ(1 − |v̄|) written in the case",
+    ));
     // Time integration of a sample of each verdict.
     let c = &case.checks;
     let mut rng = Lcg(5);
@@ -323,26 +469,34 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
             let d = base(m, x.values[ix], y.values[iy]);
             let sys = model.system(&d).map_err(|e| e.to_string())?;
             let a = map.points[i];
+            // The discrete system grows at the rate of its whole spectrum: the unresolved
+            // eigenvalues included (the verdict reads the resolved ones only).
+            let growth = max_real_part(&model_eigenvalues(&model, &d)?);
             let (chk, _) = check_growth(
                 &sys,
-                a.max_real_part,
+                growth,
                 a.spectral_scale,
                 c.time_duration,
                 77 + i as u64,
             )?;
             tchecks.push(Check::within(
                 &format!(
-                    "v̄ = {:.3}, p = {:.4} ({}): observed growth vs max Re λ = {:.3e}",
+                    "v̄ = {:.3}, p = {:.4} ({}{}): observed growth vs max Re λ = {:.3e}",
                     x.values[ix],
                     y.values[iy],
                     v.name(),
-                    a.max_real_part
+                    if a.unresolved.is_present() {
+                        ", unstable above ω_res"
+                    } else {
+                        ""
+                    },
+                    growth
                 ),
                 chk.observed,
-                a.max_real_part,
-                tol(a.max_real_part),
+                growth,
+                tol(growth),
             ));
-            trows.push((x.values[ix], y.values[iy], v, a.max_real_part, chk.observed));
+            trows.push((x.values[ix], y.values[iy], v, growth, chk.observed));
         }
     }
     report.gates.push(GateVerdict::from_checks(
@@ -351,45 +505,89 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
         tchecks,
         "RK4 from a pseudo-random state; the slope of the peaks of ln ‖(q, q̇)‖ over the last half; points with |max Re λ| ≥ time_min_rate",
     ));
-    // Boundary convergence in N.
+    // Boundary convergence in N, against the continuum's onset.
     let cv = &case.convergence;
     let mut crit = Vec::new();
     for &v in &cv.speeds {
+        let p_star = continuum_critical(m, cv, v)?.ok_or_else(|| {
+            format!(
+                "the continuum at v̄ = {v}: no branch becomes unstable below p = {}",
+                cv.onset_max
+            )
+        })?;
         let mut row = Vec::new();
         for &n in &cv.modes {
             row.push(critical_control(m, n, v, 0.01, cv.bisection_tolerance)?);
         }
-        crit.push((v, row));
+        crit.push(BoundaryRow {
+            speed: v,
+            continuum: p_star,
+            resolved: row.iter().map(|r| r.0).collect(),
+            every_eigenvalue: row.iter().map(|r| r.1).collect(),
+        });
     }
-    let mut conv_checks = Vec::new();
-    let i20 = cv.modes.iter().position(|&n| n == m.modes);
-    for (v, row) in &crit {
-        let diffs: Vec<f64> = row.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
-        let shrinking = diffs.windows(2).all(|w| w[1] < w[0]);
-        let finest = row[row.len() - 1];
-        let dist = i20.map_or(f64::NAN, |i| (row[i] - finest).abs() / finest);
-        conv_checks.push(Check::holds(
-            &format!(
-                "v̄ = {v}: p* = {} for N = {:?}; differences shrink; N = {} is {:.1}% from N = {}",
-                row.iter()
+    let inv_n: Vec<f64> = cv.modes.iter().map(|&n| 1.0 / n as f64).collect();
+    let rel = |ps: &[f64], p_star: f64| -> Vec<f64> {
+        ps.iter().map(|p| (p - p_star).abs() / p_star).collect()
+    };
+    let mut old_fails = Vec::new();
+    for r in &crit {
+        report.gates.push(cv.gate.evaluate(
+            format!(
+                "v̄ = {}: the map's flutter onset (resolved eigenvalues) → the continuum's p* = {:.6}, against 1/N (N = {:?}: {})",
+                r.speed,
+                r.continuum,
+                cv.modes,
+                r.resolved
+                    .iter()
                     .map(|p| format!("{p:.5}"))
                     .collect::<Vec<_>>()
-                    .join(", "),
-                cv.modes,
-                m.modes,
-                100.0 * dist,
-                cv.modes[cv.modes.len() - 1]
+                    .join(", ")
             ),
-            shrinking,
-            "successive differences decrease",
+            &inv_n,
+            &rel(&r.resolved, r.continuum),
         ));
+        let old = cv.gate.evaluate(
+            String::new(),
+            &inv_n,
+            &rel(&r.every_eigenvalue, r.continuum),
+        );
+        old_fails.push((r.speed, !old.passed));
     }
+    let failing: Vec<String> = old_fails
+        .iter()
+        .filter(|x| x.1)
+        .map(|x| format!("v̄ = {}", x.0))
+        .collect();
     report.gates.push(GateVerdict::from_checks(
-        format!("the flutter boundary converges in N (the map uses N = {})", m.modes),
+        "the same convergence gate fails on the onsets read from every eigenvalue (the map before issue 16)".into(),
         "convergence",
-        conv_checks,
-        "a point moment on a string: kinks at ā, slow (≈ linear in 1/N) convergence of the boundary",
+        vec![Check::holds(
+            &format!(
+                "it fails at {} of {} speeds ({}): those onsets converge to the discretization's artefact, not to p*",
+                failing.len(),
+                old_fails.len(),
+                failing.join(", ")
+            ),
+            !failing.is_empty(),
+            "fails at one speed at least",
+        )],
+        "a gate that would pass on the artefact is no gate: this is its negative control",
     ));
+    // The continuum's onset line across the map.
+    let line_speeds: Vec<f64> = (0..cv.line_speeds)
+        .map(|i| {
+            let t = i as f64 / (cv.line_speeds.max(2) - 1) as f64;
+            g.speed_from + t * (cv.speeds[cv.speeds.len() - 1] - g.speed_from)
+        })
+        .collect();
+    let continuum_line: Vec<(f64, f64)> = line_speeds
+        .par_iter()
+        .map(|&v| continuum_critical(m, cv, v).map(|p| p.map(|p| (v, p))))
+        .collect::<Result<Vec<_>, String>>()?
+        .into_iter()
+        .flatten()
+        .collect();
     // Low-order model: divergence and flutter regions.
     let lo = &case.low_order;
     let lmodel =
@@ -404,7 +602,7 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
         lo.points,
     )
     .map_err(|e| e.to_string())?;
-    let lmap = string_stability_map(&lmodel, &b, &lx, &ly, &params(EigenKernel::Faer, 0))
+    let lmap = string_stability_map(&lmodel, &b, &lx, &ly, &low_order_params())
         .map_err(|e| e.to_string())?;
     let div_ok = (0..lo.points).all(|ix| {
         let v = lx.values[ix];
@@ -442,22 +640,42 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
         50,
         false,
     );
-    let mut fb = Figure::new("flutter boundary p*(v̄) for N sine functions")
+    let fmap = fmap.series(
+        Series::line(
+            "continuum onset p*(v̄)",
+            continuum_line
+                .iter()
+                .copied()
+                .filter(|x| x.1 <= g.control_to),
+        )
+        .color(7),
+    );
+    let mut fb = Figure::new("flutter onset p*(v̄): N sine functions against the continuum")
         .x_label("v̄")
         .y_label("p*")
+        .series(Series::line("continuum", continuum_line.iter().copied()).color(7))
         .series(
             Series::line("map boundary (N = 20, grid)", boundary(&map))
                 .color(6)
                 .dashed(),
         );
     for (j, &n) in cv.modes.iter().enumerate() {
-        fb = fb.series(
-            Series::line_markers(
-                format!("N = {n} (bisection)"),
-                crit.iter().map(|(v, r)| (*v, r[j])),
+        fb = fb
+            .series(
+                Series::line_markers(
+                    format!("N = {n}: resolved eigenvalues"),
+                    crit.iter().map(|r| (r.speed, r.resolved[j])),
+                )
+                .color(j),
             )
-            .color(j),
-        );
+            .series(
+                Series::line_markers(
+                    format!("N = {n}: every eigenvalue"),
+                    crit.iter().map(|r| (r.speed, r.every_eigenvalue[j])),
+                )
+                .color(j)
+                .dashed(),
+            );
     }
     let mut fr = Figure::new("max Re λ over the map (every 10th row)")
         .x_label("v̄")
@@ -506,7 +724,9 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
         faer_marginal_only: usize,
         faer_max_difference_round_off_units: f64,
         time_checks: &'a [(f64, f64, Verdict, f64, f64)],
-        critical_control: &'a [(f64, Vec<f64>)],
+        critical_control: &'a [BoundaryRow],
+        continuum_line: &'a [(f64, f64)],
+        unresolved_warnings: usize,
         map: &'a StabilityMap,
     }
     ctx.write_data(
@@ -527,6 +747,8 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
             faer_max_difference_round_off_units: worst,
             time_checks: &trows,
             critical_control: &crit,
+            continuum_line: &continuum_line,
+            unresolved_warnings: map.count_unresolved(),
             map: &map,
         },
     )?;

@@ -21,12 +21,15 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use contactlab::model::moving::finite_element_basis::ElementKind;
+use contactlab::model::moving::resolution::model_resolution_limit;
 use contactlab::model::moving::string_model::{MovingStringModel, StringDiscretization};
 
 use super::discrete::program_eigenvalues;
 use super::format::{Continuum, ParameterSet};
 use crate::core::gate::{Check, GateVerdict};
-use crate::exact::thick_string_continuum::{branch_onset, continuum_root, track_in_control};
+use crate::exact::thick_string_continuum::{
+    continuum_onset, roots_at_rest as exact_roots_at_rest, track_in_control,
+};
 use crate::moving::study::flutter_onset;
 
 type C64 = Complex<f64>;
@@ -61,33 +64,14 @@ pub struct OnsetStudy {
     pub others_max_re: f64,
     /// (N, resolved onset, onset from every eigenvalue).
     pub program: Vec<(usize, f64, f64)>,
+    /// The finite-element onsets from resolved eigenvalues: (basis, elements M, resolved onset).
+    pub elements: Vec<(String, usize, f64)>,
 }
 
 /// The roots of the continuum of `set` at p = 0 near the reference model's lowest `count`
-/// frequencies (distinct, refined to round-off).
+/// frequencies (`exact::thick_string_continuum::roots_at_rest`).
 fn roots_at_rest(set: &ParameterSet, count: usize) -> Result<Vec<C64>, String> {
-    let d0 = set.at(0.0);
-    let mut guess: Vec<C64> = d0
-        .galerkin_eigenvalues(GUESS_MODES)?
-        .into_iter()
-        .filter(|l| l.im > 0.0)
-        .collect();
-    guess.sort_by(|a, b| a.im.total_cmp(&b.im));
-    let mut roots = Vec::new();
-    for g in guess.into_iter().take(count) {
-        let r = continuum_root(&d0, g)?;
-        if (r - g).norm() > 0.05 * g.norm() {
-            return Err(format!(
-                "{}: the root {r} is far from its guess {g}",
-                set.name
-            ));
-        }
-        if roots.iter().any(|x: &C64| (x - r).norm() < 1e-8 * r.norm()) {
-            return Err(format!("{}: two guesses found the same root {r}", set.name));
-        }
-        roots.push(r);
-    }
-    Ok(roots)
+    exact_roots_at_rest(&set.at(0.0), GUESS_MODES, count).map_err(|e| format!("{}: {e}", set.name))
 }
 
 /// The program's discretizations of the study of `set`: (basis, size, h, discretization).
@@ -155,46 +139,55 @@ pub fn levels(sets: &[ParameterSet], c: &Continuum) -> Result<Vec<ContinuumLevel
         .collect()
 }
 
-/// The resolution limit Nπ(1 − |v̄|) of N sine functions (module docs).
-pub fn resolution_limit(modes: usize, speed: f64) -> f64 {
-    modes as f64 * std::f64::consts::PI * (1.0 - speed.abs())
-}
-
 /// The continuum onset of `set` and the program's sine onsets (resolved, and from every
 /// eigenvalue), with the check that the critical root sits on the axis and the other branches
 /// are stable there.
 pub fn onsets(set: &ParameterSet, c: &Continuum) -> Result<(OnsetStudy, Check), String> {
-    let start = roots_at_rest(set, c.onset_branches)?;
-    let d0 = set.at(0.0);
-    let mut best: Option<(f64, C64)> = None;
-    for &g in &start {
-        if let Some((p, l)) = branch_onset(&d0, g, c.onset_max, ONSET_STEPS, 1e-13 * c.onset_max)? {
-            if best.is_none_or(|b| p < b.0) {
-                best = Some((p, l));
-            }
-        }
-    }
-    let (p_star, crit) = best.ok_or_else(|| {
+    let found = continuum_onset(
+        &set.at(0.0),
+        GUESS_MODES,
+        c.onset_branches,
+        c.onset_max,
+        ONSET_STEPS,
+    )
+    .map_err(|e| format!("{}: {e}", set.name))?
+    .ok_or_else(|| {
         format!(
             "{}: no branch becomes unstable below p = {}",
             set.name, c.onset_max
         )
     })?;
-    // the other branches at p*
-    let controls: Vec<f64> = (0..=ONSET_STEPS)
-        .map(|i| p_star * i as f64 / ONSET_STEPS as f64)
-        .collect();
-    let mut others: f64 = f64::NEG_INFINITY;
-    for &g in &start {
-        let r = track_in_control(&d0, g, &controls)?[ONSET_STEPS];
-        if (r - crit).norm() > 1e-6 * crit.norm() {
-            others = others.max(r.re);
-        }
-    }
+    let (p_star, crit, others, followed) = (
+        found.onset,
+        found.critical,
+        found.others_max_re,
+        found.branches,
+    );
     let program = set
         .sine_modes
         .par_iter()
-        .map(|&n| program_onsets(set, n, p_star))
+        .map(|&n| {
+            let (a, b) = program_onsets(set, StringDiscretization::Sine { modes: n }, p_star)?;
+            Ok((n, a, b))
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let fe = |kind, elements| StringDiscretization::FiniteElements { kind, elements };
+    let element_plans: Vec<(&str, usize, StringDiscretization)> = set
+        .onset_p1_elements
+        .iter()
+        .map(|&m| ("p1", m, fe(ElementKind::P1, m)))
+        .chain(
+            set.onset_hermite_elements
+                .iter()
+                .map(|&m| ("hermite", m, fe(ElementKind::Hermite, m))),
+        )
+        .collect();
+    let elements = element_plans
+        .par_iter()
+        .map(|&(basis, m, disc)| {
+            let (a, _) = program_onsets(set, disc, p_star)?;
+            Ok((basis.to_string(), m, a))
+        })
         .collect::<Result<Vec<_>, String>>()?;
     let check = Check::holds(
         &format!(
@@ -202,7 +195,7 @@ pub fn onsets(set: &ParameterSet, c: &Continuum) -> Result<(OnsetStudy, Check), 
             set.name,
             crit.re,
             crit.im,
-            start.len() - 1
+            followed - 1
         ),
         crit.re.abs() <= 1e-9 * crit.norm() && others < 0.0,
         "the critical root on the imaginary axis, every other followed branch stable",
@@ -214,6 +207,7 @@ pub fn onsets(set: &ParameterSet, c: &Continuum) -> Result<(OnsetStudy, Check), 
             critical: [crit.re, crit.im],
             others_max_re: others,
             program,
+            elements,
         },
         check,
     ))
@@ -223,10 +217,12 @@ pub fn onsets(set: &ParameterSet, c: &Continuum) -> Result<(OnsetStudy, Check), 
 /// it needs a bisection over the whole p range.
 const EVERY_EIGENVALUE_UP_TO: usize = 200;
 
-/// The program's onsets with N = `modes` sine functions: (N, from the resolved eigenvalues, from
-/// every eigenvalue (N ≤ [`EVERY_EIGENVALUE_UP_TO`], else NaN)).
+/// The program's onsets with the discretization `disc`: (from the resolved eigenvalues, from
+/// every eigenvalue (sine bases of N ≤ [`EVERY_EIGENVALUE_UP_TO`] functions, else NaN)).
 ///
-/// The resolved onset: the zero of g(p) = max{Re λ : |Im λ| < Nπ(1 − |v̄|)} by the secant method
+/// The resolved onset: the zero of g(p) = max{Re λ : |Im λ| ≤ ω_res}, ω_res = k_max(1 − |v̄|)
+/// (the library's definition, `model::moving::resolution`: k_max = Nπ for N sines, Mπ for M
+/// elements of either kind), by the secant method
 /// from p*, 1.01 p* (`p_star`, the continuum's onset, only starts the iteration) to
 /// |Δp| ≤ 1e-9 p, confirmed by g < 0 at (1 − 1e-6) p and at 1/4, 1/2, 3/4 of it, and g > 0 at
 /// (1 + 1e-6) p; without that confirmation, bisection from p*/2 to a relative bracket of 1e-6
@@ -234,17 +230,16 @@ const EVERY_EIGENVALUE_UP_TO: usize = 200;
 /// bisection to 1e-4.
 fn program_onsets(
     set: &ParameterSet,
-    modes: usize,
+    disc: StringDiscretization,
     p_star: f64,
-) -> Result<(usize, f64, f64), String> {
-    let model = MovingStringModel::new(StringDiscretization::Sine { modes }, Default::default())
-        .map_err(|e| e.to_string())?;
-    let limit = resolution_limit(modes, set.speed);
+) -> Result<(f64, f64), String> {
+    let model = MovingStringModel::new(disc, Default::default()).map_err(|e| e.to_string())?;
+    let limit = model_resolution_limit(&model, set.speed);
     let resolved = |p: f64| -> Result<f64, String> {
         let ev = program_eigenvalues(&model, &set.at(p))?;
         Ok(ev
             .iter()
-            .filter(|l| l.im.abs() < limit)
+            .filter(|l| l.im.abs() <= limit)
             .map(|l| l.re)
             .fold(f64::NEG_INFINITY, f64::max))
     };
@@ -275,12 +270,14 @@ fn program_onsets(
     } else {
         flutter_onset(resolved, "p", 0.5 * p_star, 1e-6, 1e3)?
     };
-    let b = if modes <= EVERY_EIGENVALUE_UP_TO {
+    let every_eigenvalue =
+        matches!(disc, StringDiscretization::Sine { modes } if modes <= EVERY_EIGENVALUE_UP_TO);
+    let b = if every_eigenvalue {
         flutter_onset(every, "p", 0.5 * p_star, 1e-4, 1e3)?
     } else {
         f64::NAN
     };
-    Ok((modes, a, b))
+    Ok((a, b))
 }
 
 /// The gate on the continuum onsets (one check per set).

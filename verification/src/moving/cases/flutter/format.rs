@@ -15,7 +15,9 @@ use crate::moving::study::SeriesSelect;
 pub struct FlutterCase {
     /// The parameter sets (each with its name).
     pub set: Vec<ParameterSet>,
-    pub discrete: Discrete,
+    /// The equal-discretization comparison (none: not part of this case).
+    #[serde(default)]
+    pub discrete: Option<Discrete>,
     pub continuum: Continuum,
     /// Rate gates on the series `basis/set` (eigenvalues against the continuum) and
     /// `onset/set` (the resolved sine onset against the continuum's).
@@ -35,7 +37,8 @@ pub struct ParameterSet {
     pub position: f64,
     /// Sine sizes compared with the continuum (eigenvalues and onsets), each with N·ā an
     /// integer: the bushing then sits at a node of the last sine function, the same place in
-    /// every basis (otherwise the error oscillates with the fractional part of Nā).
+    /// every basis (otherwise the error oscillates with the fractional part of Nā); none or ≥ 3.
+    #[serde(default)]
     pub sine_modes: Vec<usize>,
     /// P1 meshes compared with the continuum (ā must be a node of each: the jump and the kink
     /// sit on a node); none by default.
@@ -44,6 +47,13 @@ pub struct ParameterSet {
     /// Hermite meshes compared with the continuum (ā a node of each); none by default.
     #[serde(default)]
     pub hermite_elements: Vec<usize>,
+    /// P1 meshes whose flutter onset (from resolved eigenvalues) is compared with the
+    /// continuum's (ā a node of each); none by default.
+    #[serde(default)]
+    pub onset_p1_elements: Vec<usize>,
+    /// Hermite meshes whose onset is compared with the continuum's; none by default.
+    #[serde(default)]
+    pub onset_hermite_elements: Vec<usize>,
 }
 
 impl ParameterSet {
@@ -113,11 +123,15 @@ impl FlutterCase {
                     "in (0, 1)",
                 ));
             }
-            at_least(p, &format!("set[{i}].sine_modes"), &s.sine_modes, 3)?;
             for (field, sizes) in [
                 (format!("set[{i}].sine_modes"), &s.sine_modes),
                 (format!("set[{i}].p1_elements"), &s.p1_elements),
                 (format!("set[{i}].hermite_elements"), &s.hermite_elements),
+                (format!("set[{i}].onset_p1_elements"), &s.onset_p1_elements),
+                (
+                    format!("set[{i}].onset_hermite_elements"),
+                    &s.onset_hermite_elements,
+                ),
             ] {
                 if !sizes.is_empty() && sizes.len() < 3 {
                     return Err(invalid(p, &field, sizes.len(), "none or >= 3 meshes"));
@@ -138,12 +152,13 @@ impl FlutterCase {
                 }
             }
         }
-        let d = &self.discrete;
-        at_least(p, "discrete.modes", &d.modes, 1)?;
-        at_least(p, "discrete.controls", &d.controls, 1)?;
-        positive(p, "discrete.matrix_round_off", d.matrix_round_off)?;
-        positive(p, "discrete.eigen_round_off", d.eigen_round_off)?;
-        positive(p, "discrete.bisection_tolerance", d.bisection_tolerance)?;
+        if let Some(d) = &self.discrete {
+            at_least(p, "discrete.modes", &d.modes, 1)?;
+            at_least(p, "discrete.controls", &d.controls, 1)?;
+            positive(p, "discrete.matrix_round_off", d.matrix_round_off)?;
+            positive(p, "discrete.eigen_round_off", d.eigen_round_off)?;
+            positive(p, "discrete.bisection_tolerance", d.bisection_tolerance)?;
+        }
         let c = &self.continuum;
         positive(p, "continuum.control", c.control)?;
         positive(p, "continuum.onset_max", c.onset_max)?;
@@ -158,7 +173,15 @@ impl FlutterCase {
         for (i, g) in self.gate.iter().enumerate() {
             g.criteria.check(p, &format!("gate[{i}]"))?;
             let ok = g.select.series.split_once('/').is_some_and(|(b, s)| {
-                ["sine", "p1", "hermite", "onset"].contains(&b)
+                [
+                    "sine",
+                    "p1",
+                    "hermite",
+                    "onset",
+                    "onset_p1",
+                    "onset_hermite",
+                ]
+                .contains(&b)
                     && self.set.iter().any(|x| x.name == s)
             });
             if !ok {

@@ -37,7 +37,10 @@ fn series<'a>(levels: &'a [ContinuumLevel], basis: &str, set: &str) -> Vec<&'a C
 
 /// Runs the case.
 pub fn run(case: &FlutterCase, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
-    let disc = discrete::study(&case.set, &case.discrete, report)?;
+    let disc = match &case.discrete {
+        Some(d) => Some(discrete::study(&case.set, d, report)?),
+        None => None,
+    };
     let levels = continuum::levels(&case.set, &case.continuum)?;
     let mut onsets: Vec<OnsetStudy> = Vec::new();
     let mut checks = Vec::new();
@@ -62,6 +65,26 @@ pub fn run(case: &FlutterCase, ctx: &RunContext, report: &mut CaseReport) -> Res
                     .collect(),
                 format!(
                     "{set}: resolved sine onset vs the continuum's p* = {:.9}, against 1/N",
+                    o.onset
+                ),
+            )
+        } else if let Some(kind) = basis.strip_prefix("onset_") {
+            let o = onsets
+                .iter()
+                .find(|o| o.set == set)
+                .ok_or_else(|| format!("gate series {}: no such set", g.select.series))?;
+            let sel: Vec<&(String, usize, f64)> =
+                o.elements.iter().filter(|x| x.0 == kind).collect();
+            if sel.is_empty() {
+                return Err(format!("gate series {} matches no run", g.select.series));
+            }
+            (
+                sel.iter().map(|x| 1.0 / x.1 as f64).collect(),
+                sel.iter()
+                    .map(|x| (x.2 - o.onset).abs() / o.onset)
+                    .collect(),
+                format!(
+                    "{set}: resolved {kind} onset vs the continuum's p* = {:.9}, against h",
                     o.onset
                 ),
             )
@@ -90,6 +113,9 @@ pub fn run(case: &FlutterCase, ctx: &RunContext, report: &mut CaseReport) -> Res
         ("p1", "h", 2.0),
         ("hermite", "h", 1.0),
     ] {
+        if !levels.iter().any(|l| l.basis == basis) {
+            continue;
+        }
         let mut f = Figure::new(format!(
             "{basis}: lowest {} eigenvalues at p = {} vs the continuum",
             case.continuum.modes_checked, case.continuum.control
@@ -128,7 +154,35 @@ pub fn run(case: &FlutterCase, ctx: &RunContext, report: &mut CaseReport) -> Res
                 .dashed(),
             );
     }
-    figs.push(fo.horizontal_line(1.0, "continuum"));
+    if onsets.iter().any(|o| !o.program.is_empty()) {
+        figs.push(fo.horizontal_line(1.0, "continuum"));
+    }
+    if onsets.iter().any(|o| !o.elements.is_empty()) {
+        let mut fe = Figure::new(
+            "flutter onset of P1 and Hermite elements (resolved eigenvalues) vs the continuum's p*",
+        )
+        .x_label("h")
+        .y_label("|p* − p*_continuum| / p*_continuum")
+        .log_log();
+        let mut k = 0;
+        for o in &onsets {
+            for (basis, dash) in [("p1", false), ("hermite", true)] {
+                let pts: Vec<(f64, f64)> = o
+                    .elements
+                    .iter()
+                    .filter(|x| x.0 == basis)
+                    .map(|x| (1.0 / x.1 as f64, (x.2 - o.onset).abs() / o.onset))
+                    .collect();
+                if pts.is_empty() {
+                    continue;
+                }
+                let s = Series::line_markers(format!("{}: {basis}", o.set), pts).color(k);
+                fe = fe.series(if dash { s.dashed() } else { s });
+            }
+            k += 1;
+        }
+        figs.push(fe.reference_slope(1.0, "slope 1"));
+    }
     ctx.panels(
         report,
         "continuum",
@@ -146,8 +200,8 @@ pub fn run(case: &FlutterCase, ctx: &RunContext, report: &mut CaseReport) -> Res
     ctx.write_data(
         report,
         &Data {
-            discrete: &disc.rows,
-            discrete_onsets: &disc.onsets,
+            discrete: disc.as_ref().map_or(&[], |d| &d.rows),
+            discrete_onsets: disc.as_ref().map_or(&[], |d| &d.onsets),
             continuum_levels: &levels,
             onsets: &onsets,
         },
