@@ -25,6 +25,9 @@ pub enum Treatment {
     Penalty,
     /// BDS (1.46) = HLT (3.68): exact discrete work.
     EnergyConsistent,
+    /// HLT (3.69): λ_{n+1/2} ν tilted along the contact point's increment so that its work is
+    /// exact; differs from (3.68) when a node slides while it enters or leaves.
+    HauretLeTallecTilted,
     /// The improved penalized method, stages (a) and (b) (BDS (1.44)–(1.46)).
     LimitedPenetration,
     /// Exact non-penetration (BDS (1.18) with g = 0).
@@ -37,6 +40,7 @@ impl Treatment {
         match self {
             Self::Penalty => "penalty",
             Self::EnergyConsistent => "energy_consistent",
+            Self::HauretLeTallecTilted => "hauret_le_tallec_tilted",
             Self::LimitedPenetration => "limited_penetration",
             Self::Signorini => "signorini",
         }
@@ -44,7 +48,10 @@ impl Treatment {
 
     /// Whether the compliance force has an exact discrete work (BDS Prop. 1.3, HLT Prop. 3.7).
     pub fn is_energy_consistent(self) -> bool {
-        matches!(self, Self::EnergyConsistent | Self::LimitedPenetration)
+        matches!(
+            self,
+            Self::EnergyConsistent | Self::HauretLeTallecTilted | Self::LimitedPenetration
+        )
     }
 }
 
