@@ -226,14 +226,14 @@ impl CaseData<'_> {
                 s.max_penetration,
                 1e-12 * g,
             )),
-            Treatment::Penalty
-            | Treatment::EnergyConsistent
-            | Treatment::HauretLeTallecTilted => checks.push(Check {
-                name: format!("{label}: max penetration exceeds g = {g:e}"),
-                observed: s.max_penetration,
-                limit: format!("> {g:.3e}"),
-                passed: s.max_penetration > g,
-            }),
+            Treatment::Penalty | Treatment::EnergyConsistent | Treatment::HauretLeTallecTilted => {
+                checks.push(Check {
+                    name: format!("{label}: max penetration exceeds g = {g:e}"),
+                    observed: s.max_penetration,
+                    limit: format!("> {g:.3e}"),
+                    passed: s.max_penetration > g,
+                })
+            }
         }
     }
 
