@@ -23,6 +23,7 @@ fn data(contact: ContactModel, friction: f64) -> MovingStringData {
             position: 0.3,
             contact,
             friction,
+            patch_width: 0.0,
         }),
     }
 }

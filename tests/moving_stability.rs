@@ -26,6 +26,7 @@ fn thick(speed: f64, control: f64) -> MovingStringData {
             position: 0.3,
             contact: ContactModel::Ideal,
             friction: control / 2.0,
+            patch_width: 0.0,
         }),
     }
 }

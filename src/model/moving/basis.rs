@@ -46,6 +46,11 @@ pub trait RitzBasis: Send + Sync {
     /// Φ' jumps (a node of C⁰ elements) the slope is the mean of the one-sided slopes.
     fn point_values_into(&self, xi: f64, values: &mut [f64], slopes: &mut [f64]);
 
+    /// The patch means over [a, b] (0 < a < b < 1): (1/(b − a)) ∫_a^b Φ_k into `means`, and the
+    /// mean slopes (Φ_k(b) − Φ_k(a))/(b − a) into `mean_slopes` — the contact patch of width
+    /// b − a (docs/moving_continua.md), exact for every basis.
+    fn patch_means_into(&self, a: f64, b: f64, means: &mut [f64], mean_slopes: &mut [f64]);
+
     /// A short description (`sine, N = 20`).
     fn label(&self) -> String;
 }
@@ -105,6 +110,21 @@ impl RitzBasis for SineBasis {
             let kp = (k + 1) as f64 * pi;
             values[k] = s2 * (kp * xi).sin();
             slopes[k] = s2 * kp * (kp * xi).cos();
+        }
+    }
+
+    /// Closed form, in the product form that keeps its digits for a narrow patch:
+    /// mean = √2 · 2 sin(kπ(a + b)/2) sin(kπ(b − a)/2) / (kπ(b − a)),
+    /// mean slope = √2 · 2 cos(kπ(a + b)/2) sin(kπ(b − a)/2) / (b − a).
+    fn patch_means_into(&self, a: f64, b: f64, means: &mut [f64], mean_slopes: &mut [f64]) {
+        let pi = std::f64::consts::PI;
+        let s2 = std::f64::consts::SQRT_2;
+        let (mid, width) = (0.5 * (a + b), b - a);
+        for k in 0..self.modes {
+            let kp = (k + 1) as f64 * pi;
+            let half = (0.5 * kp * width).sin();
+            means[k] = s2 * 2.0 * (kp * mid).sin() * half / (kp * width);
+            mean_slopes[k] = s2 * 2.0 * (kp * mid).cos() * half / width;
         }
     }
 

@@ -206,6 +206,42 @@ impl RitzBasis for FiniteElementBasis {
         }
     }
 
+    /// Means by three-point Gauss–Legendre on each element's share of [a, b] (exact for the cubic
+    /// Hermite functions, and for P1); mean slopes from the (continuous) values at a and b.
+    fn patch_means_into(&self, a: f64, b: f64, means: &mut [f64], mean_slopes: &mut [f64]) {
+        means.iter_mut().for_each(|v| *v = 0.0);
+        let width = b - a;
+        let gauss = [
+            (-(0.6f64).sqrt(), 5.0 / 9.0),
+            (0.0, 8.0 / 9.0),
+            ((0.6f64).sqrt(), 5.0 / 9.0),
+        ];
+        for e in 0..self.mesh.elements() {
+            let (x0, x1) = self.mesh.element(e);
+            let (lo, hi) = (x0.max(a), x1.min(b));
+            if hi <= lo {
+                continue;
+            }
+            let h = x1 - x0;
+            for (g, w) in gauss {
+                let x = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g;
+                let (v, _) = local_shapes(self.kind, h, (x - x0) / h);
+                for (i, vi) in v.iter().enumerate() {
+                    if let Some(dof) = self.dof(e, i) {
+                        means[dof] += 0.5 * (hi - lo) * w * vi / width;
+                    }
+                }
+            }
+        }
+        let n = means.len();
+        let (mut va, mut vb, mut scratch) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        self.point_values_into(a, &mut va, &mut scratch);
+        self.point_values_into(b, &mut vb, &mut scratch);
+        for k in 0..n {
+            mean_slopes[k] = (vb[k] - va[k]) / width;
+        }
+    }
+
     fn label(&self) -> String {
         let kind = match self.kind {
             ElementKind::P1 => "P1",

@@ -451,6 +451,7 @@ mod tests {
                 position: 0.3,
                 contact: ContactModel::Ideal,
                 friction: 0.0,
+                patch_width: 0.0,
             }),
         };
         let x = GridAxis::linspace(StringParameter::Speed, 0.0, 1.2, 7).unwrap();
@@ -490,6 +491,7 @@ mod tests {
                 position: 0.3,
                 contact: ContactModel::Penalty { stiffness: 5.0 },
                 friction: 0.0,
+                patch_width: 0.0,
             }),
         };
         let x = GridAxis::linspace(StringParameter::Speed, 0.0, 0.9, 6).unwrap();

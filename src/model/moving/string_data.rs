@@ -38,6 +38,11 @@ pub struct OscillatorData {
     /// μ h̄ ≥ 0: friction coefficient times the dimensionless thickness (0: the thin string of
     /// §4.2.1, on which friction does no virtual work).
     pub friction: f64,
+    /// ε ≥ 0: the width of the contact patch centred at ā (0: the paper's point contact). With
+    /// ε > 0 the bushing reads the patch mean of w and the friction moment acts on the mean slope
+    /// (w(ā + ε/2) − w(ā − ε/2))/ε, both bounded on H¹ (docs/moving_continua.md).
+    #[serde(default)]
+    pub patch_width: f64,
 }
 
 /// The moving string and, optionally, its oscillator.
@@ -75,6 +80,17 @@ impl MovingStringData {
                 ));
             }
             require_nonnegative("oscillator.friction", o.friction)?;
+            require_nonnegative("oscillator.patch_width", o.patch_width)?;
+            if !(o.position - 0.5 * o.patch_width > 0.0 && o.position + 0.5 * o.patch_width < 1.0) {
+                return Err(InputError::new(
+                    "oscillator.patch_width",
+                    o.patch_width,
+                    format!(
+                        "a patch inside the string: ā ± ε/2 in (0, 1) with ā = {}",
+                        o.position
+                    ),
+                ));
+            }
             if let ContactModel::Penalty { stiffness } = o.contact {
                 require_positive("oscillator.penalty_stiffness", stiffness)?;
             }
@@ -217,6 +233,7 @@ mod tests {
                 position: 0.3,
                 contact,
                 friction: 0.1,
+                patch_width: 0.0,
             }),
         }
     }

@@ -24,7 +24,7 @@ use crate::error::InputError;
 use crate::model::moving::basis::{RitzBasis, SineBasis, StringOperators};
 use crate::model::moving::finite_element_basis::{ElementKind, FiniteElementBasis};
 use crate::model::moving::friction::add_friction;
-use crate::model::moving::string_data::{ContactModel, MovingStringData};
+use crate::model::moving::string_data::{ContactModel, MovingStringData, OscillatorData};
 use crate::model::moving::system::MovingSystem;
 
 /// The Ritz discretization of the string.
@@ -172,7 +172,7 @@ impl MovingStringModel {
                     (o.stiffness / (1.0 + o.stiffness / stiffness), o.friction)
                 }
             };
-            let (phi, dphi) = self.point_values(o.position);
+            let (phi, dphi) = self.contact_values(o);
             out.mass[(n, n)] = o.mass;
             add_spring_between(c, &phi, n, &mut out.stiffness);
             add_friction(
@@ -210,7 +210,7 @@ impl MovingStringModel {
         coords.push("y_c".into());
         let mut s = MovingSystem::zeros(coords);
         self.assemble_string_into(data.speed, data.damping, &mut s);
-        let (phi, dphi) = self.point_values(o.position);
+        let (phi, dphi) = self.contact_values(&o);
         s.mass[(n, n)] = o.mass;
         let (u, y) = (n, n + 1);
         // spring c̄ (u − y_c)²/2 and contact k̄_p (y_c − w(ā))²/2.
@@ -259,12 +259,27 @@ impl MovingStringModel {
             StringParameter::ControlParameter => c_eff / o.contact_stiffness(),
             _ => return None,
         };
-        let (phi, dphi) = self.point_values(o.position);
+        let (phi, dphi) = self.contact_values(o);
         let mut r = dphi;
         r.push(0.0);
         let mut s = phi;
         s.push(-1.0);
         Some((r, s, -0.5 * kappa))
+    }
+
+    /// What the bushing reads of the string: Φ(ā), Φ'(ā) for point contact; the patch means
+    /// Φ̄ and mean slopes (Φ(ā + ε/2) − Φ(ā − ε/2))/ε for a patch of width ε > 0.
+    pub fn contact_values(&self, o: &OscillatorData) -> (Vec<f64>, Vec<f64>) {
+        if o.patch_width > 0.0 {
+            let n = self.string_dimension();
+            let (mut v, mut s) = (vec![0.0; n], vec![0.0; n]);
+            let half = 0.5 * o.patch_width;
+            self.basis
+                .patch_means_into(o.position - half, o.position + half, &mut v, &mut s);
+            (v, s)
+        } else {
+            self.point_values(o.position)
+        }
     }
 
     /// Φ(ā), Φ'(ā).
@@ -335,6 +350,7 @@ mod tests {
                 position: 0.31,
                 contact,
                 friction,
+                patch_width: 0.0,
             }),
         }
     }

@@ -41,6 +41,9 @@ pub struct OscillatorSection {
     pub penalty_stiffness: Option<f64>,
     pub friction: Option<f64>,
     pub control_parameter: Option<f64>,
+    /// ε: the width of the contact patch (0: point contact, the paper's).
+    #[serde(default)]
+    pub patch_width: f64,
 }
 
 fn ideal() -> String {
@@ -161,6 +164,7 @@ impl MovingStringScene {
                     position: o.position,
                     contact,
                     friction: 0.0,
+                    patch_width: o.patch_width,
                 };
                 osc.friction = match (o.friction, o.control_parameter) {
                     (Some(_), Some(p)) => {

@@ -51,8 +51,12 @@ use super::thick_string_galerkin::ThickString;
 
 type C64 = Complex<f64>;
 
-/// The characteristic function F(λ) of the continuum (see the module docs).
+/// The characteristic function F(λ) of the continuum (see the module docs); for a contact patch
+/// (`d.patch > 0`) that of `thick_string_patch`.
 pub fn characteristic(d: &ThickString, lambda: C64) -> C64 {
+    if d.patch > 0.0 {
+        return super::thick_string_patch::patch_characteristic(d, d.patch, lambda);
+    }
     let v = d.speed;
     let b = 1.0 - v * v;
     let root = (lambda * lambda + lambda * (b * d.damping)).sqrt();
@@ -291,6 +295,7 @@ mod tests {
             mass: 0.5,
             position,
             control,
+            patch: 0.0,
         }
     }
 

@@ -48,6 +48,8 @@ pub struct ThickString {
     pub position: f64,
     /// p = μ c̄ h̄.
     pub control: f64,
+    /// ε: the contact patch's width (0: point contact; `thick_string_patch`).
+    pub patch: f64,
 }
 
 /// The matrices of λ² M + λ C + K on (q_1 … q_N, u).
@@ -100,9 +102,29 @@ impl ThickString {
         let s2 = std::f64::consts::SQRT_2;
         let (v, a) = (self.speed, self.position);
         let (c, p) = (self.stiffness, self.control);
-        let phi: Vec<f64> = (1..=n).map(|j| s2 * (j as f64 * pi * a).sin()).collect();
+        // what the bushing reads: point values, or patch means (1/ε)∫ Φ_j over [a − ε/2, a + ε/2]
+        // = √2 (cos(jπa₋) − cos(jπa₊))/(jπε) and mean slopes √2 (sin(jπa₊) − sin(jπa₋))/ε
+        let eps = self.patch;
+        let (am, ap) = (a - 0.5 * eps, a + 0.5 * eps);
+        let phi: Vec<f64> = (1..=n)
+            .map(|j| {
+                let jp = j as f64 * pi;
+                if eps > 0.0 {
+                    s2 * ((jp * am).cos() - (jp * ap).cos()) / (jp * eps)
+                } else {
+                    s2 * (jp * a).sin()
+                }
+            })
+            .collect();
         let dphi: Vec<f64> = (1..=n)
-            .map(|j| s2 * j as f64 * pi * (j as f64 * pi * a).cos())
+            .map(|j| {
+                let jp = j as f64 * pi;
+                if eps > 0.0 {
+                    s2 * ((jp * ap).sin() - (jp * am).sin()) / eps
+                } else {
+                    s2 * jp * (jp * a).cos()
+                }
+            })
             .collect();
         let mut m = DMatrix::zeros(n + 1, n + 1);
         let mut cm = DMatrix::zeros(n + 1, n + 1);
@@ -210,6 +232,7 @@ mod tests {
             mass: 1.0,
             position: 0.3,
             control: 0.0,
+            patch: 0.0,
         };
         let mut f: Vec<f64> = d
             .galerkin_eigenvalues(6)

@@ -105,6 +105,7 @@ mod tests {
             mass: 0.5,
             position,
             control,
+            patch: 0.0,
         }
     }
 

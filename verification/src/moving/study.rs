@@ -92,6 +92,7 @@ impl Bushing {
                 position: self.position,
                 contact,
                 friction,
+                patch_width: 0.0,
             }),
         }
     }

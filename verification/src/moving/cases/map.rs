@@ -267,6 +267,7 @@ fn continuum_critical(
         mass: m.mass,
         position: m.position,
         control: 0.0,
+        patch: 0.0,
     };
     continuum_onset(&d, 60, cv.onset_branches, cv.onset_max, 200)
         .map(|o| o.map(|o| o.onset))

@@ -210,6 +210,7 @@ pub fn run(case: &SymmetryCase, ctx: &RunContext, report: &mut CaseReport) -> Re
             position: 0.37,
             contact: ContactModel::Ideal,
             friction: 0.0,
+            patch_width: 0.0,
         }),
     };
     let mut checks = Vec::new();

@@ -118,6 +118,7 @@ impl StringPoint {
                         position: a,
                         contact,
                         friction: self.control_parameter.unwrap_or(0.0) / ks,
+                        patch_width: 0.0,
                     })
                 }
                 _ => None,

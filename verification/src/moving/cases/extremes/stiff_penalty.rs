@@ -50,6 +50,7 @@ pub(super) fn study(
         mass: 0.5,
         position: 0.3,
         control: 0.1 * c,
+        patch: 0.0,
     };
     let to_c = |v: &[c64]| -> Vec<nalgebra::Complex<f64>> {
         v.iter()

@@ -40,12 +40,16 @@ pub(super) fn program_data(d: &ThickString) -> MovingStringData {
         mass: d.mass,
         position: d.position,
     };
-    bushing.data(
+    let mut data = bushing.data(
         d.speed,
         d.damping,
         ContactModel::Ideal,
         d.control / d.stiffness,
-    )
+    );
+    if let Some(o) = data.oscillator.as_mut() {
+        o.patch_width = d.patch;
+    }
+    data
 }
 
 /// The program's eigenvalues of `model` for `d`.

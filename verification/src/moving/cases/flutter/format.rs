@@ -54,6 +54,9 @@ pub struct ParameterSet {
     /// Hermite meshes whose onset is compared with the continuum's; none by default.
     #[serde(default)]
     pub onset_hermite_elements: Vec<usize>,
+    /// ε: the width of the contact patch (0: the paper's point contact).
+    #[serde(default)]
+    pub patch_width: f64,
 }
 
 impl ParameterSet {
@@ -66,6 +69,7 @@ impl ParameterSet {
             mass: self.mass,
             position: self.position,
             control,
+            patch: self.patch_width,
         }
     }
 }
