@@ -41,7 +41,12 @@ fn every_moving_case_parses_with_an_explanation() {
 fn the_timing_map_and_the_element_onsets_are_default_tier_and_the_rest_is_quick() {
     for c in moving_cases() {
         // the map (its timing) and the finite-element onsets (14 s of eigenvalue bisections)
-        let expected = if ["moving_map", "moving_flutter_elements"].contains(&c.header.id.as_str())
+        let expected = if [
+            "moving_map",
+            "moving_flutter_elements",
+            "moving_flutter_patch",
+        ]
+        .contains(&c.header.id.as_str())
         {
             Tier::Default
         } else {

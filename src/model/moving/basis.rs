@@ -141,6 +141,32 @@ mod tests {
     use crate::fem::quadrature::GaussLegendre;
 
     #[test]
+    fn sine_patch_means_equal_their_quadrature() {
+        // the product form of the closed form against 40-point Gauss of the definition; a narrow
+        // patch keeps its digits (the plain form cos − cos would lose them)
+        let b = SineBasis::new(30).unwrap();
+        let g = GaussLegendre::new(40).unwrap();
+        let pi = std::f64::consts::PI;
+        let (mut m, mut s) = (vec![0.0; 30], vec![0.0; 30]);
+        for (lo, hi) in [(0.275, 0.325), (0.1, 0.6), (0.41 - 1e-6, 0.41 + 1e-6)] {
+            b.patch_means_into(lo, hi, &mut m, &mut s);
+            for k in 0..30 {
+                let kp = (k + 1) as f64 * pi;
+                let f = |x: f64| std::f64::consts::SQRT_2 * (kp * x).sin();
+                let quad: f64 = g
+                    .points()
+                    .iter()
+                    .zip(g.weights())
+                    .map(|(t, w)| 0.5 * w * f(0.5 * (lo + hi) + 0.5 * (hi - lo) * t))
+                    .sum();
+                assert!((m[k] - quad).abs() < 1e-13, "k = {k}, [{lo}, {hi}]");
+                let slope = (f(hi) - f(lo)) / (hi - lo);
+                assert!((s[k] - slope).abs() < 1e-8 * kp, "k = {k}, [{lo}, {hi}]");
+            }
+        }
+    }
+
+    #[test]
     fn sine_operators_equal_their_quadrature() {
         let b = SineBasis::new(7).unwrap();
         let ops = b.operators();

@@ -305,6 +305,38 @@ mod tests {
     }
 
     #[test]
+    fn patch_means_of_an_interpolated_quadratic_are_exact() {
+        // w = ξ(1 − ξ), exact in the Hermite basis: its patch mean over [a, b] is
+        // (b² − a²)/2 − (b³ − a³)/3 over (b − a), its mean slope 1 − (a + b); patches across
+        // element ends and inside one element.
+        let b = FiniteElementBasis::uniform(ElementKind::Hermite, 5).unwrap();
+        let n = b.len();
+        let mut q = vec![0.0; n];
+        for node in 0..=5 {
+            let x = node as f64 / 5.0;
+            if let Some(i) = b.value_dof(node) {
+                q[i] = x * (1.0 - x);
+            }
+            q[b.slope_dof(node)] = 1.0 - 2.0 * x;
+        }
+        let (mut m, mut s) = (vec![0.0; n], vec![0.0; n]);
+        for (lo, hi) in [(0.13, 0.77), (0.41, 0.45), (0.2, 0.4), (0.05, 0.95)] {
+            b.patch_means_into(lo, hi, &mut m, &mut s);
+            let mean: f64 = m.iter().zip(&q).map(|(a, b)| a * b).sum();
+            let slope: f64 = s.iter().zip(&q).map(|(a, b)| a * b).sum();
+            let exact = ((hi * hi - lo * lo) / 2.0 - (hi.powi(3) - lo.powi(3)) / 3.0) / (hi - lo);
+            assert!(
+                (mean - exact).abs() < 1e-14,
+                "[{lo}, {hi}]: {mean} vs {exact}"
+            );
+            assert!(
+                (slope - (1.0 - lo - hi)).abs() < 1e-13,
+                "[{lo}, {hi}]: {slope}"
+            );
+        }
+    }
+
+    #[test]
     fn too_few_elements_is_an_input_error() {
         let e = FiniteElementBasis::uniform(ElementKind::P1, 1).unwrap_err();
         assert_eq!(e.field, "discretization.elements");

@@ -260,6 +260,12 @@ mod tests {
         );
         d = MovingStringData::string(f64::NAN, 0.0);
         assert_eq!(d.validate().unwrap_err().field, "string.speed");
+        // a patch reaching a guide, and a negative width
+        for width in [2.0, -0.1, f64::NAN] {
+            let mut d = osc(ContactModel::Ideal);
+            d.oscillator.as_mut().unwrap().patch_width = width;
+            assert_eq!(d.validate().unwrap_err().field, "oscillator.patch_width");
+        }
         let e = StringParameter::PenaltyStiffness
             .set(&mut osc(ContactModel::Ideal), 3.0)
             .unwrap_err();

@@ -17,6 +17,7 @@
 //! penalty_stiffness = 100.0    # k̄_p, penalty contact only
 //! friction = 0.1               # μ h̄ (thick string; 0: thin string), or instead:
 //! # control_parameter = 0.2    # p = μ h̄ c̄ (ideal) or μ h̄ k̄_p (penalty)
+//! # patch_width = 0.05         # ε: contact on a patch [ā − ε/2, ā + ε/2] (0: point contact)
 //!
 //! [discretization]
 //! basis = "sine"               # "sine" | "p1" | "hermite"
