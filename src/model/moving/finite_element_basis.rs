@@ -273,6 +273,20 @@ mod tests {
         assert!(ops.transport[(1, 1)].abs() < 1e-15);
     }
 
+    /// The Hermite coefficients (nodal values and slopes) of w = ξ(1 − ξ) on `elements` equal
+    /// elements, which the basis reproduces exactly.
+    fn quadratic_coefficients(b: &FiniteElementBasis, elements: usize) -> Vec<f64> {
+        let mut q = vec![0.0; b.len()];
+        for node in 0..=elements {
+            let x = node as f64 / elements as f64;
+            if let Some(i) = b.value_dof(node) {
+                q[i] = x * (1.0 - x);
+            }
+            q[b.slope_dof(node)] = 1.0 - 2.0 * x;
+        }
+        q
+    }
+
     #[test]
     fn hermite_transport_is_skew_and_values_interpolate_cubics() {
         let b = FiniteElementBasis::uniform(ElementKind::Hermite, 5).unwrap();
@@ -286,14 +300,7 @@ mod tests {
             }
         }
         // w = ξ(1 − ξ): nodal values and slopes as coefficients reproduce it exactly.
-        let mut q = vec![0.0; n];
-        for node in 0..=5 {
-            let x = node as f64 / 5.0;
-            if let Some(i) = b.value_dof(node) {
-                q[i] = x * (1.0 - x);
-            }
-            q[b.slope_dof(node)] = 1.0 - 2.0 * x;
-        }
+        let q = quadratic_coefficients(&b, 5);
         let (mut v, mut s) = (vec![0.0; n], vec![0.0; n]);
         for xi in [0.0, 0.13, 0.4, 0.77, 1.0] {
             b.point_values_into(xi, &mut v, &mut s);
@@ -311,14 +318,7 @@ mod tests {
         // element ends and inside one element.
         let b = FiniteElementBasis::uniform(ElementKind::Hermite, 5).unwrap();
         let n = b.len();
-        let mut q = vec![0.0; n];
-        for node in 0..=5 {
-            let x = node as f64 / 5.0;
-            if let Some(i) = b.value_dof(node) {
-                q[i] = x * (1.0 - x);
-            }
-            q[b.slope_dof(node)] = 1.0 - 2.0 * x;
-        }
+        let q = quadratic_coefficients(&b, 5);
         let (mut m, mut s) = (vec![0.0; n], vec![0.0; n]);
         for (lo, hi) in [(0.13, 0.77), (0.41, 0.45), (0.2, 0.4), (0.05, 0.95)] {
             b.patch_means_into(lo, hi, &mut m, &mut s);
