@@ -714,6 +714,8 @@ mod scratch {
                 stiffness_scaling: Scaling::Element,
                 depth: None,
                 depth_scaling: Scaling::Element,
+                law: Default::default(),
+                full_path: false,
             };
             let mut prev: Option<[f64; 4]> = None;
             for m in [50usize, 100, 200, 400, 800, 1600, 3200, 6400] {

@@ -13,7 +13,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use contactlab::field::Field;
-use contactlab::material::hyperelastic::LinearElastic1d;
+use contactlab::material::hyperelastic::{Hyperelastic1d, LinearElastic1d, StVenantKirchhoff1d};
 use contactlab::mesh::interval::IntervalMesh;
 use contactlab::model::dynamic::audit::AuditSummary;
 use contactlab::model::dynamic::bar::{BarBody, BarData, BarSupports, MassMatrix};
@@ -79,6 +79,37 @@ pub struct FamilySpec {
     pub depth: Option<f64>,
     #[serde(default)]
     pub depth_scaling: Scaling,
+    /// The bar's law (default linear; the closed forms of the 1D kinds are the linear law's).
+    #[serde(default, skip_serializing_if = "BarLaw::is_linear")]
+    pub law: BarLaw,
+    /// The full semismooth Newton path even for the linear law (the scene's `solver.path =
+    /// "full"`): Gonzalez then evaluates the law's discrete gradient element by element.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub full_path: bool,
+}
+
+/// The law of a bar family.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BarLaw {
+    #[default]
+    Linear,
+    /// W = E/8 (F² − 1)².
+    StVenantKirchhoff,
+}
+
+impl BarLaw {
+    fn is_linear(&self) -> bool {
+        *self == BarLaw::Linear
+    }
+
+    /// The law with modulus E.
+    pub fn law(self, young: f64) -> Arc<dyn Hyperelastic1d> {
+        match self {
+            BarLaw::Linear => Arc::new(LinearElastic1d { young }),
+            BarLaw::StVenantKirchhoff => Arc::new(StVenantKirchhoff1d { young }),
+        }
+    }
 }
 
 impl FamilySpec {
@@ -183,6 +214,9 @@ impl FamilySpec {
             "Newmark: the balance (1.48) with the trapezoidal mean of the forces holds at \
              round-off (linear body); the constraint work of the averaged multipliers has no \
              sign (reported, not gated)"
+        } else if self.scheme == DynamicScheme::Gonzalez {
+            "Gonzalez: the balance (1.48) holds at round-off for either law (the stored energy \
+             from the law's W(F), the force from its discrete gradient)"
         } else {
             "midpoint rule, linear body: the balance (1.48) holds at round-off"
         };
@@ -264,14 +298,14 @@ impl BarSetup {
         (self.young / self.density).sqrt()
     }
 
-    /// The P1 bar on M equal elements.
-    pub fn body(&self, elements: usize, mass: MassMatrix) -> Result<BarBody, String> {
+    /// The P1 bar on M equal elements with the law `law`.
+    pub fn body(&self, elements: usize, mass: MassMatrix, law: BarLaw) -> Result<BarBody, String> {
         let mesh = IntervalMesh::uniform(self.length, elements).map_err(|e| e.to_string())?;
         BarBody::new(BarData {
             mesh,
             density: self.density,
             area: self.area,
-            law: Arc::new(LinearElastic1d { young: self.young }),
+            law: law.law(self.young),
             supports: self.supports,
             mass,
             body_force: Field::Constant(0.0),

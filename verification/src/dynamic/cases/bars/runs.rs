@@ -98,7 +98,7 @@ impl WallRun {
         wall: f64,
         initial: impl FnOnce(&BarBody) -> (Vec<f64>, Vec<f64>),
     ) -> Result<Self, String> {
-        let body = setup.body(elements, family.mass)?;
+        let body = setup.body(elements, family.mass, family.law)?;
         let h = setup.length / elements as f64;
         let k = final_time / steps as f64;
         let treatment = family.normal_treatment(h, setup.young);
@@ -116,8 +116,11 @@ impl WallRun {
             initial_displacement,
             initial_velocity,
         };
-        let solver =
-            DynamicSolver::new(problem, DynamicParams::default()).map_err(|e| e.to_string())?;
+        let params = DynamicParams {
+            force_full_path: family.full_path,
+            ..DynamicParams::default()
+        };
+        let solver = DynamicSolver::new(problem, params).map_err(|e| e.to_string())?;
         Ok(Self {
             body,
             solver,

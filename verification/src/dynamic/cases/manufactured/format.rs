@@ -49,11 +49,17 @@ impl ContactForce {
 pub struct Combination {
     pub scheme: DynamicScheme,
     pub treatment: ContactForce,
+    /// The full semismooth Newton path even for the linear law (the scene's `solver.path =
+    /// "full"`): the linear body's Gonzalez then evaluates the law's discrete gradient element
+    /// by element instead of the factored operator.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub full_path: bool,
 }
 
 impl Combination {
     pub(crate) fn label(&self) -> String {
-        format!("{} + {}", self.scheme.name(), self.treatment.name())
+        let path = if self.full_path { " (full path)" } else { "" };
+        format!("{} + {}{path}", self.scheme.name(), self.treatment.name())
     }
 
     /// The identities this combination satisfies at round-off (see the module docs).
@@ -118,6 +124,9 @@ pub struct SeriesSelect {
     /// The run of the time study (required there).
     pub scheme: Option<DynamicScheme>,
     pub treatment: Option<ContactForce>,
+    /// The run on the full path (see [`Combination::full_path`]).
+    #[serde(default)]
+    pub full_path: bool,
     pub error: ErrorName,
 }
 
@@ -196,6 +205,7 @@ impl ManufacturedCase {
                 &Combination {
                     scheme: s.scheme,
                     treatment: s.treatment,
+                    full_path: false,
                 },
             )?;
         }
@@ -220,7 +230,11 @@ impl ManufacturedCase {
                     invalid(p, &format!("{field}.study"), "time", "a [time_study]")
                 })?;
                 let c = match (g.scheme, g.treatment) {
-                    (Some(scheme), Some(treatment)) => Combination { scheme, treatment },
+                    (Some(scheme), Some(treatment)) => Combination {
+                        scheme,
+                        treatment,
+                        full_path: g.full_path,
+                    },
                     _ => {
                         return Err(invalid(
                             p,
@@ -349,6 +363,7 @@ ci_width = 1.0
         let c = Combination {
             scheme: DynamicScheme::Midpoint,
             treatment: ContactForce::EnergyConsistent,
+            full_path: false,
         };
         let r = solve(&m, MassMatrix::Consistent, 4, 16, c).unwrap();
         let s = r.audit.summary();

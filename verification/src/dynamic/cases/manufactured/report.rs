@@ -50,7 +50,11 @@ pub(crate) fn rate_gate(
 ) -> Result<GateVerdict, String> {
     let g = &gate.select;
     let wanted = match (g.scheme, g.treatment) {
-        (Some(scheme), Some(treatment)) => Some(Combination { scheme, treatment }),
+        (Some(scheme), Some(treatment)) => Some(Combination {
+            scheme,
+            treatment,
+            full_path: g.full_path,
+        }),
         _ => None,
     };
     let (_, _, _, s) = series
@@ -241,6 +245,7 @@ pub(crate) fn space_outputs(
     let label = Combination {
         scheme: s.scheme,
         treatment: s.treatment,
+        full_path: false,
     }
     .label();
     let h: Vec<f64> = runs.iter().map(|r| 1.0 / r.divisions as f64).collect();

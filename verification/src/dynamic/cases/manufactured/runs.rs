@@ -62,8 +62,11 @@ pub(crate) fn solve(
         initial_displacement: body.from_nodal(&m.nodal(&nodes, 0.0, false)),
         initial_velocity: body.from_nodal(&m.nodal(&nodes, 0.0, true)),
     };
-    let solver =
-        DynamicSolver::new(problem, DynamicParams::default()).map_err(|e| e.to_string())?;
+    let params = DynamicParams {
+        force_full_path: combination.full_path,
+        ..DynamicParams::default()
+    };
+    let solver = DynamicSolver::new(problem, params).map_err(|e| e.to_string())?;
     let mut min_penetration = f64::INFINITY;
     let sol = solver
         .solve_with(&mut |v| {
@@ -185,6 +188,7 @@ pub(crate) fn run_space_study(
     let c = Combination {
         scheme: s.scheme,
         treatment: s.treatment,
+        full_path: false,
     };
     let bar = ctx.progress_bar(s.divisions.len() as u64, id);
     let out = s
