@@ -83,7 +83,7 @@ pub struct FamilySpec {
     #[serde(default, skip_serializing_if = "BarLaw::is_linear")]
     pub law: BarLaw,
     /// The full semismooth Newton path even for the linear law (the scene's `solver.path =
-    /// "full"`): Gonzalez then evaluates the law's discrete gradient element by element.
+    /// "full"`): no condensation onto the contact dofs, Newton on every dof.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub full_path: bool,
 }

@@ -50,8 +50,8 @@ pub struct Combination {
     pub scheme: DynamicScheme,
     pub treatment: ContactForce,
     /// The full semismooth Newton path even for the linear law (the scene's `solver.path =
-    /// "full"`): the linear body's Gonzalez then evaluates the law's discrete gradient element
-    /// by element instead of the factored operator.
+    /// "full"`): no condensation onto the contact dofs, Newton on every dof with the assembled
+    /// operator.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub full_path: bool,
 }
