@@ -307,11 +307,13 @@ impl RodSolver {
                 k,
             );
             if !finite {
-                let value = w
-                    .iter()
-                    .copied()
-                    .find(|x| !x.is_finite())
-                    .unwrap_or(f64::NAN);
+                // The velocity first; a finite w_n can still overflow u_n = u_{n−1} + k w_n.
+                let first = |x: &[f64]| x.iter().copied().find(|v| !v.is_finite());
+                let (quantity, value) = match (first(&w), first(&u)) {
+                    (Some(v), _) => ("velocity w_n", v),
+                    (None, Some(v)) => ("displacement u_n", v),
+                    (None, None) => ("velocity w_n", f64::NAN),
+                };
                 let hint = if self.scheme == TimeScheme::Explicit && k >= bound {
                     format!(
                         "; the explicit step k = {k} is above the stability bound 2a/b = {bound}: \
@@ -323,7 +325,7 @@ impl RodSolver {
                 return Err(SolveError::NonFinite {
                     step: n,
                     time: t,
-                    quantity: "velocity w_n".to_string(),
+                    quantity: quantity.to_string(),
                     value,
                     hint,
                 });
@@ -472,7 +474,8 @@ fn non_finite_load(n: usize, t: f64, value: f64) -> SolveError {
 }
 
 /// One fused pass: w_i = (s g_i − b u_i − p z_i)/α, u_i ← u_i + k w_i. Returns whether every w_i
-/// is finite (an and-reduction, which vectorizes, unlike a floating-point sum).
+/// and every new u_i is finite (an and-reduction, which vectorizes, unlike a floating-point sum):
+/// near overflow a finite w_i can still make u_i infinite, which must not reach an observer.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn step_kernel(
@@ -493,7 +496,7 @@ fn step_kernel(
         let wi = (s * g[i] - b * u[i] - p * z[i]) * inv_alpha;
         w[i] = wi;
         u[i] += k * wi;
-        finite &= wi.abs() < f64::INFINITY;
+        finite &= wi.abs() < f64::INFINITY && u[i].abs() < f64::INFINITY;
     }
     finite
 }

@@ -11,6 +11,21 @@ pub fn upper_half(ev: &[c64]) -> Vec<c64> {
     v
 }
 
+/// The `count` lowest eigenvalues with Im λ > 0, or an error naming `what` when the spectrum has
+/// fewer (a system whose oscillating modes were lost: never an index out of bounds).
+pub fn lowest_oscillating(ev: &[c64], count: usize, what: &str) -> Result<Vec<c64>, String> {
+    let mut v = upper_half(ev);
+    if v.len() < count {
+        return Err(format!(
+            "{what}: {} eigenvalues with Im λ > 0 of {}, {count} needed",
+            v.len(),
+            ev.len()
+        ));
+    }
+    v.truncate(count);
+    Ok(v)
+}
+
 /// The positive frequencies Im λ > 0, ascending.
 pub fn frequencies(ev: &[c64]) -> Vec<f64> {
     let mut f: Vec<f64> = ev.iter().filter(|l| l.im > 0.0).map(|l| l.im).collect();

@@ -221,8 +221,12 @@ pub fn slope_from(t: &[f64], y: &[f64], from: f64) -> f64 {
     sxy / sxx
 }
 
+/// The most RK4 steps a time check may take (the suite's checks take at most about 2·10⁵).
+pub const MAX_TIME_CHECK_STEPS: usize = 5_000_000;
+
 /// Integrates `system` over `duration` from a pseudo-random state (seed `seed`) with the step
-/// 0.2/ρ (ρ = max |λ|, capped to duration/200) and compares the growth rate with `predicted`.
+/// 0.2/ρ (ρ = max |λ|, capped to duration/200) and compares the growth rate with `predicted`;
+/// refuses (an error) when that needs more than [`MAX_TIME_CHECK_STEPS`] steps.
 pub fn check_growth(
     system: &MovingSystem,
     predicted: f64,
@@ -235,7 +239,17 @@ pub fn check_growth(
     let q0: Vec<f64> = (0..n).map(|_| rng.next_signed()).collect();
     let v0: Vec<f64> = (0..n).map(|_| rng.next_signed()).collect();
     let step = (0.2 / spectral_scale.max(1e-300)).min(duration / 200.0);
-    let steps = (duration / step).ceil() as usize;
+    let steps = (duration / step).ceil();
+    // A stiff system (ρ huge: a spring of 10³² from a lost basis value, say) would need ~10¹⁹
+    // RK4 steps: refuse with the reason instead of running for ever.
+    if steps.is_nan() || steps > MAX_TIME_CHECK_STEPS as f64 {
+        return Err(format!(
+            "the time check would need {steps:.3e} RK4 steps (spectral scale ρ = {spectral_scale:.3e}, \
+             step 0.2/ρ over {duration}), more than {MAX_TIME_CHECK_STEPS}: the system is too stiff \
+             for an explicit check"
+        ));
+    }
+    let steps = steps as usize;
     let record_every = (steps / 2000).max(1);
     let params = LinearOdeParams {
         step,

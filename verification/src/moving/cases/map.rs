@@ -43,6 +43,8 @@ use crate::exact::thick_string_galerkin::ThickString;
 use crate::moving::errors::max_real_part;
 use crate::moving::plots::{boundary, map_figure};
 use crate::moving::study::{check_growth, flutter_onset, model_eigenvalues, Bushing};
+
+use super::map_lines::{run_lines, LineMap};
 use crate::plot::{Figure, Series};
 use crate::stats::lcg::Lcg;
 
@@ -55,6 +57,9 @@ pub struct MapCase {
     pub checks: MapChecks,
     pub convergence: BoundaryConvergence,
     pub low_order: LowOrder,
+    /// More maps through the rank-one fast path, along other friction axes and contact models.
+    #[serde(default)]
+    pub lines: Vec<LineMap>,
 }
 
 /// `[model]`: the thick string with ideal contact.
@@ -151,6 +156,9 @@ impl MapCase {
             ));
         }
         self.convergence.gate.check(p, "convergence.gate")?;
+        for (i, line) in self.lines.iter().enumerate() {
+            line.check(p, i)?;
+        }
         positive(p, "convergence.onset_max", self.convergence.onset_max)?;
         for &n in &self.convergence.modes {
             let x = self.model.position * n as f64;
@@ -391,6 +399,20 @@ pub fn run(case: &MapCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
         ],
         "the map's eigenvalue-only kernel and faer's dense eigensolver on the same companion matrices",
     ));
+    let bushing = Bushing {
+        stiffness: m.stiffness,
+        mass: m.mass,
+        position: m.position,
+    };
+    run_lines(
+        &case.lines,
+        &model,
+        &bushing,
+        m.damping,
+        m.modes,
+        case.checks.faer_round_off,
+        report,
+    )?;
     // The resolution limit, independently: a sample of points recomputed from the whole
     // spectrum, filtered here by |Im λ| ≤ Nπ(1 − |v̄|) (N sines carry N half-waves; the string's
     // wave against the transport has wavenumber ω/(1 − |v̄|)).

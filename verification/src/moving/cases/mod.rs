@@ -6,6 +6,7 @@ pub mod disc;
 pub mod extremes;
 pub mod flutter;
 pub mod map;
+pub mod map_lines;
 pub mod oscillator;
 pub mod penalty;
 pub mod string;

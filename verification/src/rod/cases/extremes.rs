@@ -4,7 +4,7 @@
 
 use serde::Deserialize;
 
-use contactlab::error::{Error as LabError, SolveError};
+use contactlab::error::Error as LabError;
 use contactlab::model::quasistatic::scheme::TimeScheme;
 
 use crate::core::case::Case;
@@ -19,6 +19,8 @@ use crate::rod::errors::RodErrorObserver;
 use crate::rod::reference::{max_difference, reference_run, round_off_bound, RodData};
 use crate::rod::study::{Discretization, RodStudy};
 
+use super::extreme_checks::{error_checks, overflow_checks, FastPath, FiniteWatch};
+
 /// The case body of `rod_extremes`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -26,6 +28,8 @@ pub struct ExtremesCase {
     /// The rod every run starts from.
     pub scene: toml::Table,
     pub extreme: Vec<ExtremeSpec>,
+    /// The work every completed run must report (the fast path the scene's data allow).
+    pub fast_path: Option<FastPath>,
 }
 
 impl ExtremesCase {
@@ -49,8 +53,9 @@ pub struct ExtremeSpec {
     pub steps: usize,
     #[serde(default)]
     pub scheme: TimeScheme,
-    /// `solution` (must run and meet the checks below) or `non_finite_error` (must stop with a
-    /// non-finite error naming the step).
+    /// `solution` (must run and meet the checks below), `non_finite_error` (must stop with
+    /// `SolveError::NonFinite`) or `not_converged` (must stop with
+    /// `SolveError::NewtonNotConverged`), naming the step, time and what failed.
     pub expect: String,
     /// Compare every nodal value of every step with the second implementation of the scheme
     /// ([`crate::rod::reference`]) within its round-off bound: the numbers at the extreme are the
@@ -67,6 +72,17 @@ pub struct ExtremeSpec {
     /// `refinement_tolerance` of this rate (the data still converge at the theory's order).
     pub refinement_rate: Option<f64>,
     pub refinement_tolerance: Option<f64>,
+    /// For an error: the step it must name (any step > 0 when absent).
+    pub error_step: Option<usize>,
+    /// For an error: the quantity it must name (`SolveError::NonFinite`'s `quantity`).
+    pub error_quantity: Option<String>,
+    /// For an error: texts its message must contain (a hint, a bound).
+    #[serde(default)]
+    pub message_contains: Vec<String>,
+    /// For an explicit step above its bound: the run must stop at the first step whose velocity
+    /// overflows (see [`super::extreme_checks::overflow_checks`]).
+    #[serde(default)]
+    pub first_overflow: bool,
     #[serde(default)]
     pub note: String,
 }
@@ -148,6 +164,7 @@ fn run_one(case: &ExtremesCase, spec: &ExtremeSpec) -> ExtremeReport {
         let mut u_final = Vec::new();
         let mut states: Vec<Vec<f64>> = Vec::new();
         let mut errors = None;
+        let mut watch = FiniteWatch::default();
         let result = match exact {
             Some(ex) => {
                 let mut obs = RodErrorObserver::new(ex, a, b, spec.steps);
@@ -157,6 +174,7 @@ fn run_one(case: &ExtremesCase, spec: &ExtremeSpec) -> ExtremeReport {
                         contactlab::model::quasistatic::rod_solver::RodObserver::observe(
                             &mut obs, s,
                         );
+                        watch.observe(s);
                         if s.n == steps {
                             u_final = s.u.to_vec();
                         }
@@ -166,13 +184,16 @@ fn run_one(case: &ExtremesCase, spec: &ExtremeSpec) -> ExtremeReport {
                 errors = Some(obs.errors());
                 r
             }
-            None => {
-                solver.run(&mut |_: &contactlab::model::quasistatic::rod_solver::RodStep<'_>| {})
-            }
+            None => solver.run(
+                &mut |s: &contactlab::model::quasistatic::rod_solver::RodStep<'_>| watch.observe(s),
+            ),
         };
         match (spec.expect.as_str(), result) {
             ("solution", Ok(stats)) => {
                 checks.push(Check::holds("run completes", true, "a solution"));
+                if let Some(fp) = &case.fast_path {
+                    checks.extend(fp.checks(&stats, spec.scheme, a, b));
+                }
                 if spec.discrete_reference {
                     checks.push(discrete_reference_check(
                         &study,
@@ -252,27 +273,23 @@ fn run_one(case: &ExtremesCase, spec: &ExtremeSpec) -> ExtremeReport {
                 ));
                 Ok(format!("error: {e}"))
             }
-            ("non_finite_error", Ok(_)) => {
+            ("non_finite_error" | "not_converged", Ok(_)) => {
                 checks.push(Check::holds(
-                    "stops with a non-finite error",
+                    &format!("stops with an error ({})", spec.expect),
                     false,
                     "an error",
                 ));
                 Ok("solution (unexpected)".into())
             }
-            ("non_finite_error", Err(e)) => {
+            ("non_finite_error" | "not_converged", Err(e)) => {
                 let message = LabError::from(e.clone()).to_string();
-                let ok = matches!(e, SolveError::NonFinite { step, .. } if step > 0);
-                checks.push(Check::holds(
-                    "stops with a non-finite error naming the step and time",
-                    ok,
-                    "SolveError::NonFinite",
-                ));
-                checks.push(Check::holds(
-                    "the message names the stability bound",
-                    message.contains("stability bound"),
-                    "a hint",
-                ));
+                checks.extend(error_checks(spec, &e, &message));
+                if spec.first_overflow {
+                    let k = study.problem.final_time / spec.steps as f64;
+                    // u_n = (1 − kb/(a + θkb)) u_{n−1} + (terms bounded by the data)
+                    let amplification = (1.0 - k * b / (a + spec.scheme.theta() * k * b)).abs();
+                    checks.extend(overflow_checks(&watch, &e, amplification));
+                }
                 Ok(format!("error: {message}"))
             }
             (other, _) => Err(format!("unknown expect = \"{other}\"")),

@@ -8,7 +8,7 @@ use super::systems::eigen;
 use super::CriticalSpeed;
 use crate::core::gate::{Check, GateVerdict, RateGate};
 use crate::core::report::case_report::CaseReport;
-use crate::moving::errors::upper_half;
+use crate::moving::errors::lowest_oscillating;
 use crate::moving::study::SeriesSelect;
 
 /// What the study measured: (δ, ω₁/(π(1 − v̄²)), companion norm) and the successive differences.
@@ -37,7 +37,7 @@ pub(super) fn study(
             .system(&MovingStringData::string(v, 0.0))
             .map_err(|e| e.to_string())?;
         let (ev, norm) = eigen(&s)?;
-        let w1 = upper_half(&ev)[0].im;
+        let w1 = lowest_oscillating(&ev, 1, &format!("v̄ = 1 − {d}"))?[0].im;
         rows.push((d, w1 / (std::f64::consts::PI * (1.0 - v * v)), norm));
     }
     // r(δ) = r0 + C δ + O(δ²) with δ = 10⁻ᵏ: successive differences 0.9 C δ, rate 1, until the

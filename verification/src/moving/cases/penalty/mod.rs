@@ -38,7 +38,7 @@ use contactlab::model::moving::string_model::{
 use crate::core::context::RunContext;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
-use crate::moving::errors::{max_real_part, upper_half};
+use crate::moving::errors::{lowest_oscillating, max_real_part};
 use crate::moving::plots::map_figure;
 use crate::moving::study::{flutter_onset, model_eigenvalues, pencil_eigen};
 use crate::plot::{Figure, Series};
@@ -81,11 +81,16 @@ pub fn run(case: &PenaltyCase, ctx: &RunContext, report: &mut CaseReport) -> Res
 
     // Frictionless: convergence to ideal contact and agreement of the three paths.
     let f = &case.frictionless;
-    let ideal = upper_half(&model_eigenvalues(
-        &series,
-        &m.bushing()
-            .data(f.speed, f.damping, ContactModel::Ideal, 0.0),
-    )?);
+    let mc = f.modes_checked;
+    let ideal = lowest_oscillating(
+        &model_eigenvalues(
+            &series,
+            &m.bushing()
+                .data(f.speed, f.damping, ContactModel::Ideal, 0.0),
+        )?,
+        mc,
+        "ideal contact",
+    )?;
     let mut conv = Vec::new();
     let mut agree: f64 = 0.0;
     let mut infinite_counts = Vec::new();
@@ -96,17 +101,25 @@ pub fn run(case: &PenaltyCase, ctx: &RunContext, report: &mut CaseReport) -> Res
             ContactModel::Penalty { stiffness: kp },
             0.0,
         );
-        let pen = upper_half(&model_eigenvalues(&series, &d)?);
+        let pen = lowest_oscillating(
+            &model_eigenvalues(&series, &d)?,
+            mc,
+            &format!("series springs, k̄_p = {kp}"),
+        )?;
         let err = (0..f.modes_checked)
             .map(|k| (pen[k] - ideal[k]).norm() / ideal[k].norm())
             .fold(0.0, f64::max);
         conv.push((kp, err));
         if kp <= f.agreement_up_to {
-            let via_schur = upper_half(&model_eigenvalues(&schur, &d)?);
+            let via_schur = lowest_oscillating(
+                &model_eigenvalues(&schur, &d)?,
+                mc,
+                &format!("Schur complement, k̄_p = {kp}"),
+            )?;
             let full = series.system_with_bushing(&d).map_err(|e| e.to_string())?;
             let qz = pencil_eigen(&full).map_err(|e| e.to_string())?;
             infinite_counts.push((kp, qz.stats.infinite_eigenvalues));
-            let via_qz = upper_half(&qz.eigenvalues);
+            let via_qz = lowest_oscillating(&qz.eigenvalues, mc, &format!("QZ, k̄_p = {kp}"))?;
             // round-off unit: n ε (1 + k̄_p/c̄), n the order of the uncondensed pencil
             let unit = (2 * full.dimension()) as f64 * f64::EPSILON * (1.0 + kp / m.stiffness);
             for k in 0..f.modes_checked {

@@ -15,6 +15,7 @@
 //! ratio; a singular quantity's growth), the typed error, the skipped steps and the rollers'
 //! rigid sinking against its closed form — never agreement with the paper.
 
+pub mod floating;
 pub mod format;
 pub mod gates;
 pub mod report;
@@ -64,6 +65,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         gates::plain_rollers_stop(&c.scene, spec)?,
         gates::skipped_steps(&runs, k, steps),
         gates::rigid_sinking(&runs, steps, spec.sinking_round_off_factor),
+        floating::floating_laws(&c.scene, spec, steps)?,
     ];
     for g in &spec.gci {
         let values = gates::series(&runs, &spec.meshes, g.reading, g.beta, g.quantity);

@@ -80,7 +80,7 @@ const GAUSS3: [(f64, f64); 3] = [
 ];
 
 /// R(t) = −∫_Γ2 f2_y (exact for data of degree ≤ 5 along each edge).
-fn load_resultant(problem: &PlaneProblem, t: f64) -> f64 {
+pub(super) fn load_resultant(problem: &PlaneProblem, t: f64) -> f64 {
     let mesh = &problem.mesh;
     let mut r = 0.0;
     for part in &problem.traction {
@@ -99,8 +99,9 @@ fn load_resultant(problem: &PlaneProblem, t: f64) -> f64 {
     r
 }
 
-/// The closed form of the mean sinking of Γ3 at T for a rollers run with the lubricated law,
-/// constant p0 and no body force (None otherwise).
+/// The closed form of the mean sinking of Γ3 at T for a rollers run with the lubricated law
+/// (constant p0) or the linear law (p0 = 0, S_n = 0: Σ_g W_g β r_g = R(τ_n)), and no body force
+/// (None otherwise).
 fn sinking_closed_form(
     scene: &PlaneScene,
     beta: f64,
@@ -109,8 +110,10 @@ fn sinking_closed_form(
 ) -> Option<(f64, f64)> {
     let problem = &scene.problem;
     let contact = problem.contact.as_ref()?;
-    let p0 = match contact.law.as_foundation_law()? {
-        FoundationLaw::Lubricated { p0, .. } => p0.as_constant()?,
+    // The linear law p = β r has no positive part: (2.8) with p0 = 0 and no receding term.
+    let (p0, receding) = match contact.law.as_foundation_law()? {
+        FoundationLaw::Lubricated { p0, .. } => (p0.as_constant()?, receding),
+        FoundationLaw::Linear { .. } => (0.0, 0.0),
         _ => return None,
     };
     if problem
@@ -121,14 +124,7 @@ fn sinking_closed_form(
     {
         return None;
     }
-    let mesh = &problem.mesh;
-    let length: f64 = mesh
-        .boundary()
-        .iter()
-        .enumerate()
-        .filter(|&(e, _)| contact.boundary.contains(mesh, e))
-        .map(|(_, edge)| mesh.edge_normal(edge).1)
-        .sum();
+    let length = contact_length(problem);
     let times = scene.grid.times();
     let last_skipped = skipped.iter().copied().max().unwrap_or(0);
     let sum: f64 = (last_skipped + 1..times.len())
@@ -138,6 +134,11 @@ fn sinking_closed_form(
         })
         .sum();
     Some((-(sum / beta - receding) / length, receding * beta / sum))
+}
+
+/// L = |Γ3|, the sum of the contact edges' lengths (0 without contact).
+pub(super) fn contact_length(problem: &PlaneProblem) -> f64 {
+    contact_edges(problem).iter().map(|e| e.2).sum()
 }
 
 /// The Γ3 edges (node a, node b, length) of a problem.
