@@ -475,7 +475,8 @@ fn non_finite_load(n: usize, t: f64, value: f64) -> SolveError {
 
 /// One fused pass: w_i = (s g_i − b u_i − p z_i)/α, u_i ← u_i + k w_i. Returns whether every w_i
 /// and every new u_i is finite (an and-reduction, which vectorizes, unlike a floating-point sum):
-/// near overflow a finite w_i can still make u_i infinite, which must not reach an observer.
+/// near overflow a finite w_i can still make u_i infinite, which must not reach an observer, so
+/// the test is on u_i.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn step_kernel(
@@ -496,7 +497,8 @@ fn step_kernel(
         let wi = (s * g[i] - b * u[i] - p * z[i]) * inv_alpha;
         w[i] = wi;
         u[i] += k * wi;
-        finite &= wi.abs() < f64::INFINITY && u[i].abs() < f64::INFINITY;
+        // k > 0 and u_{n−1} finite: a non-finite w_i makes u_i non-finite, so u_i tests both.
+        finite &= u[i].abs() < f64::INFINITY;
     }
     finite
 }
