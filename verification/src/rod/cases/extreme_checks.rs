@@ -11,7 +11,6 @@ use contactlab::model::quasistatic::rod_solver::RodStep;
 use contactlab::model::quasistatic::rod_step::RodStats;
 use contactlab::model::quasistatic::scheme::TimeScheme;
 
-use super::extremes::ExtremeSpec;
 use crate::core::gate::Check;
 
 /// What the observer saw of a run: the last step observed, its largest |u_i|, and whether every
@@ -43,9 +42,21 @@ impl FiniteWatch {
     }
 }
 
-/// The step, time and kind of `e` against the spec's `expect`, `error_step`, `error_quantity`
-/// and `message_contains`.
-pub fn error_checks(spec: &ExtremeSpec, e: &SolveError, message: &str) -> Vec<Check> {
+/// What an extreme run that must stop is expected to report (an `[[extreme]]` entry's keys).
+#[derive(Debug, Clone, Copy)]
+pub struct ErrorExpectation<'a> {
+    /// `non_finite_error` or `not_converged`.
+    pub expect: &'a str,
+    /// The step the error must name (any step > 0 when absent).
+    pub error_step: Option<usize>,
+    /// The quantity a `NonFinite` error must name.
+    pub error_quantity: Option<&'a str>,
+    /// Texts the message must contain.
+    pub message_contains: &'a [String],
+}
+
+/// The step, time and kind of `e` against the expectation.
+pub fn error_checks(spec: &ErrorExpectation<'_>, e: &SolveError, message: &str) -> Vec<Check> {
     let (kind, step, quantity) = match e {
         SolveError::NonFinite { step, quantity, .. } => {
             ("non_finite_error", Some(*step), Some(quantity.as_str()))
@@ -56,7 +67,7 @@ pub fn error_checks(spec: &ExtremeSpec, e: &SolveError, message: &str) -> Vec<Ch
     let mut checks = vec![Check::holds(
         &format!("stops with the typed error {} ({kind})", spec.expect),
         kind == spec.expect,
-        match spec.expect.as_str() {
+        match spec.expect {
             "not_converged" => "SolveError::NewtonNotConverged",
             _ => "SolveError::NonFinite",
         },
@@ -73,14 +84,14 @@ pub fn error_checks(spec: &ExtremeSpec, e: &SolveError, message: &str) -> Vec<Ch
             .error_step
             .map_or("a step > 0".into(), |s| format!("step {s}")),
     ));
-    if let Some(want) = &spec.error_quantity {
+    if let Some(want) = spec.error_quantity {
         checks.push(Check::holds(
             &format!("names the quantity ({})", quantity.unwrap_or("none")),
-            quantity == Some(want.as_str()),
+            quantity == Some(want),
             want,
         ));
     }
-    for text in &spec.message_contains {
+    for text in spec.message_contains {
         checks.push(Check::holds(
             &format!("the message names \"{text}\""),
             message.contains(text.as_str()),

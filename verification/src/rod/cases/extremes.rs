@@ -19,7 +19,9 @@ use crate::rod::errors::RodErrorObserver;
 use crate::rod::reference::{max_difference, reference_run, round_off_bound, RodData};
 use crate::rod::study::{Discretization, RodStudy};
 
-use super::extreme_checks::{error_checks, overflow_checks, FastPath, FiniteWatch};
+use super::extreme_checks::{
+    error_checks, overflow_checks, ErrorExpectation, FastPath, FiniteWatch,
+};
 
 /// The case body of `rod_extremes`.
 #[derive(Debug, Clone, Deserialize)]
@@ -283,7 +285,13 @@ fn run_one(case: &ExtremesCase, spec: &ExtremeSpec) -> ExtremeReport {
             }
             ("non_finite_error" | "not_converged", Err(e)) => {
                 let message = LabError::from(e.clone()).to_string();
-                checks.extend(error_checks(spec, &e, &message));
+                let expectation = ErrorExpectation {
+                    expect: &spec.expect,
+                    error_step: spec.error_step,
+                    error_quantity: spec.error_quantity.as_deref(),
+                    message_contains: &spec.message_contains,
+                };
+                checks.extend(error_checks(&expectation, &e, &message));
                 if spec.first_overflow {
                     let k = study.problem.final_time / spec.steps as f64;
                     // u_n = (1 − kb/(a + θkb)) u_{n−1} + (terms bounded by the data)
