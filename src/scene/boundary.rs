@@ -34,6 +34,7 @@ pub struct TractionSection {
     pub sides: Vec<RectangleSide>,
     #[serde(rename = "where")]
     pub where_: Option<String>,
+    #[serde(deserialize_with = "super::fixed_array::exact")]
     pub value: [FieldSpec; 2],
 }
 

@@ -17,6 +17,7 @@ mod boundary;
 mod common;
 pub mod dynamic;
 pub mod field_spec;
+mod fixed_array;
 pub mod foundation;
 pub mod moving;
 pub mod plane;

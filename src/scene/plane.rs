@@ -105,13 +105,17 @@ pub struct PlaneSceneFile {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GeometrySection {
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::fixed_array::exact")]
     pub origin: [f64; 2],
+    #[serde(deserialize_with = "super::fixed_array::exact")]
     pub size: [f64; 2],
+    #[serde(deserialize_with = "super::fixed_array::exact")]
     pub divisions: [usize; 2],
     #[serde(default)]
     pub diagonal: Diagonal,
+    #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub grading: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub graded_towards: Option<[GradingDirection; 2]>,
 }
 
@@ -158,6 +162,7 @@ pub struct MaterialSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct VectorSection {
+    #[serde(deserialize_with = "super::fixed_array::exact")]
     pub value: [FieldSpec; 2],
 }
 
@@ -184,6 +189,7 @@ pub struct ContactSection {
     #[serde(default)]
     pub integration: ContactIntegration,
     /// The boundary source g on Γ3 (manufactured solutions).
+    #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub source: Option<[FieldSpec; 2]>,
 }
 
@@ -191,6 +197,7 @@ pub struct ContactSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct InitialSection {
+    #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub displacement: Option<[FieldSpec; 2]>,
 }
 

@@ -243,7 +243,27 @@ impl RodScene {
     }
 }
 
+/// The rod's foundation law; its p0 and S act at the one contact point x = L and are functions of
+/// t alone (Fernández & Sofonea (2.8), (2.9)): an expression in x or y is an error, not a value
+/// silently taken at x = L.
 fn foundation_law(f: &FoundationSection) -> Result<FoundationLaw, Error> {
+    for (key, spec) in [("foundation.p0", &f.p0), ("foundation.stress", &f.stress)] {
+        if let Some(spec) = spec {
+            let d = spec.to_field(key)?.dependence();
+            if d.on_space() {
+                let written = match spec {
+                    FieldSpec::Number(v) => v.to_string(),
+                    FieldSpec::Expression(e) => format!("\"{e}\""),
+                };
+                return Err(InputError::new(
+                    key,
+                    written,
+                    "a number or an expression of t alone (the rod's contact is the point x = L)",
+                )
+                .into());
+            }
+        }
+    }
     Ok(crate::scene::foundation::foundation_law(
         "foundation",
         &f.law,
@@ -283,7 +303,12 @@ fn mesh(m: &MeshSection, length: f64) -> Result<IntervalMesh, InputError> {
                     m.graded_towards.unwrap_or(GradingEnd::End),
                 )
                 .map_err(|e| InputError {
-                    field: "mesh.grading".into(),
+                    // the mesh's own names are the scene's, except its grading exponent
+                    field: if e.field == "grading.exponent" {
+                        "mesh.grading".into()
+                    } else {
+                        e.field.clone()
+                    },
                     ..e
                 })
             }

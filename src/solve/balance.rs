@@ -58,6 +58,9 @@ impl Balance for RowMajor<'_> {
     }
 }
 
+/// Passes of one row's scaling search (see [`balance`]).
+const MAX_PASSES: usize = 1100;
+
 /// Balances `a` in place (at most 64 sweeps) and multiplies `scale[i]` by the factor applied to
 /// row/column i, so that on return `a` = D⁻¹ A D with D = diag(scale) (when `scale` started at 1).
 pub fn balance(a: &mut impl Balance, mut scale: Option<&mut [f64]>) {
@@ -72,20 +75,34 @@ pub fn balance(a: &mut impl Balance, mut scale: Option<&mut [f64]>) {
                     r += a.entry(i, j).abs();
                 }
             }
-            if c == 0.0 || r == 0.0 {
+            // A non-finite sum (an infinite entry) has no balancing factor: leave the row; the
+            // eigensolver's own finiteness check reports the matrix.
+            if c == 0.0 || r == 0.0 || !(c + r).is_finite() {
                 continue;
             }
             let total = c + r;
-            let (mut f, mut c2, mut r2) = (1.0, c, r);
-            while c2 < 0.5 * r2 {
+            let (mut f, mut c2, mut r2) = (1.0f64, c, r);
+            // Each loop moves c2/r2 by 4 per pass: at most MAX_PASSES passes span the ratio of
+            // the largest to the smallest positive double (2^2098); the bound also ends a pass
+            // that underflows to 0.
+            for _ in 0..MAX_PASSES {
+                if c2 >= 0.5 * r2 {
+                    break;
+                }
                 c2 *= 2.0;
                 r2 *= 0.5;
                 f *= 2.0;
             }
-            while c2 >= 2.0 * r2 {
+            for _ in 0..MAX_PASSES {
+                if c2 < 2.0 * r2 {
+                    break;
+                }
                 c2 *= 0.5;
                 r2 *= 2.0;
                 f *= 0.5;
+            }
+            if !f.is_finite() || f <= 0.0 {
+                continue;
             }
             if c2 + r2 < 0.95 * total {
                 converged = false;
@@ -115,6 +132,20 @@ mod tests {
                 (1.0 + (i + 2 * j) as f64) * 10f64.powi(i as i32 - j as i32)
             })
             .collect()
+    }
+
+    #[test]
+    fn infinite_and_extreme_entries_end_the_balancing() {
+        // Once was an endless loop: inf >= 2 inf holds for ever.
+        let mut a = vec![1.0, f64::INFINITY, 1.0, 1.0];
+        balance(&mut RowMajor { a: &mut a, n: 2 }, None);
+        assert_eq!(a[1], f64::INFINITY);
+        // the widest finite ratios: the factors stay finite and positive
+        let mut b = vec![0.0, f64::MAX, 5e-324, 0.0];
+        let mut scale = vec![1.0; 2];
+        balance(&mut RowMajor { a: &mut b, n: 2 }, Some(&mut scale));
+        assert!(scale.iter().all(|s| s.is_finite() && *s > 0.0), "{scale:?}");
+        assert!(b.iter().all(|v| v.is_finite()), "{b:?}");
     }
 
     #[test]

@@ -77,12 +77,23 @@ pub fn run(case: &Case, ctx: &RunContext) -> CaseReport {
     report
 }
 
+/// Creates `out` and checks that a file can be written there, before any solving: an unwritable
+/// `--out` must not cost a whole run.
+fn writable_out(out: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("--out {}: {e}", out.display()))?;
+    let probe = out.join(".contactlab-write-probe");
+    std::fs::write(&probe, b"")
+        .and_then(|()| std::fs::remove_file(&probe))
+        .map_err(|e| format!("--out {}: not writable: {e}", out.display()))
+}
+
 /// `verify scene FILE --out DIR`: the solver crate reads and validates the scene once
 /// (`Scene::load`, which dispatches on its `model`), and the family that writes that model's
 /// results runs it. Returns a summary.
 pub fn run_scene(file: &Path, out: &Path) -> Result<String, String> {
     let source = file.display().to_string();
     let scene = Scene::load(file).map_err(|e| format!("{source}: {e}"))?;
+    writable_out(out)?;
     let model = scene.model();
     let family = FAMILIES
         .iter()

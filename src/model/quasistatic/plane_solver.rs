@@ -311,6 +311,8 @@ impl PlaneSolver {
             skipped: false,
         });
         let mut started = false;
+        // Why the last skipped step had no equilibrium (a run that skips every step is an error).
+        let mut last_skip: Option<(usize, f64, String)> = None;
         for n in 1..=self.grid.steps() {
             let t_prev = self.grid.times()[n - 1];
             let t = self.grid.times()[n];
@@ -428,6 +430,7 @@ impl PlaneSolver {
                         }
                         Err(ContactFailure::NoEquilibrium(reason)) => {
                             if self.params.start_at_first_equilibrium && !started {
+                                last_skip = Some((n, t, reason));
                                 None
                             } else {
                                 return Err(SolveError::NoEquilibrium {
@@ -512,6 +515,18 @@ impl PlaneSolver {
         }
         if let Some(nt) = &self.newton {
             stats.factor_nnz = stats.factor_nnz.max(nt.nnz());
+        }
+        // Every step skipped: nothing was solved, and an all-zero solution must not pass for one.
+        if let (false, Some((step, time, reason))) = (started, last_skip) {
+            return Err(SolveError::NoEquilibrium {
+                step,
+                time,
+                reason: format!(
+                    "no step of the run has an equilibrium (all {} skipped with \
+                     start_at_first_equilibrium); the last: {reason}",
+                    stats.skipped_steps.len()
+                ),
+            });
         }
         Ok(stats)
     }

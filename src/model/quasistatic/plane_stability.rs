@@ -76,8 +76,36 @@ pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error>
             l[(i, j)] = 0.0;
         }
     }
-    // C = L⁻¹ K_B L⁻ᵀ
+    // C = L⁻¹ (K_B / s) L⁻ᵀ with s ≈ max |K_B|: the eigenvalues scale with s, and the scaled
+    // matrix keeps the tridiagonal QR away from subnormal numbers (young = 1e-308 once made it
+    // iterate for ever) and from overflow.
+    let mut s_b = 0.0f64;
+    for j in 0..n {
+        for i in 0..n {
+            s_b = s_b.max(kb[(i, j)].abs());
+        }
+    }
+    if !s_b.is_finite() {
+        return Err(SolveError::NonFinite {
+            step: 0,
+            time: 0.0,
+            quantity: "elastic stiffness K_B (the explicit bound's eigenproblem)".into(),
+            value: s_b,
+            hint: "; check elasticity: its moduli overflow the stiffness".into(),
+        }
+        .into());
+    }
+    if s_b == 0.0 {
+        return Ok(0.0);
+    }
+    // a power of 2: the scaling is exact, the eigenvalues' bits those of the unscaled problem
+    let s_b = 2f64.powi(s_b.log2().round() as i32);
     let mut c = kb;
+    for j in 0..n {
+        for i in 0..n {
+            c[(i, j)] /= s_b;
+        }
+    }
     faer::linalg::triangular_solve::solve_lower_triangular_in_place(
         l.as_ref(),
         c.as_mut(),
@@ -89,6 +117,20 @@ pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error>
         ct.as_mut(),
         faer::Par::Seq,
     );
+    if let Some(v) = (0..n)
+        .flat_map(|j| (0..n).map(move |i| (i, j)))
+        .map(|(i, j)| ct[(i, j)])
+        .find(|v| !v.is_finite())
+    {
+        return Err(SolveError::NonFinite {
+            step: 0,
+            time: 0.0,
+            quantity: "L⁻¹ K_B L⁻ᵀ (the explicit bound's eigenproblem)".into(),
+            value: v,
+            hint: "; the viscosity K_A is too small against the elasticity K_B".into(),
+        }
+        .into());
+    }
     let mut s = faer::diag::Diag::<f64>::zeros(n);
     let mut buf = MemBuffer::new(evd::self_adjoint_evd_scratch::<f64>(
         n,
@@ -113,5 +155,6 @@ pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error>
     (0..n)
         .map(|i| s[i])
         .reduce(f64::max)
+        .map(|l| l * s_b)
         .ok_or_else(|| InputError::new("mesh", "0 dofs", "at least one free dof").into())
 }

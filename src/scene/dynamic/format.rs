@@ -50,11 +50,15 @@ pub struct BodySection {
     pub area: Option<f64>,
     pub supports: Option<Vec<BarEnd>>,
     // rectangle
+    #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub origin: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub size: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub divisions: Option<[usize; 2]>,
     pub diagonal: Option<Diagonal>,
     // disk, annulus
+    #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub center: Option<[f64; 2]>,
     pub radius: Option<f64>,
     pub rings: Option<usize>,
@@ -87,7 +91,7 @@ pub struct DynamicTimeSection {
 #[serde(untagged)]
 pub enum ValueSpec {
     Scalar(FieldSpec),
-    Vector([FieldSpec; 2]),
+    Vector(#[serde(deserialize_with = "crate::scene::fixed_array::exact")] [FieldSpec; 2]),
 }
 
 /// `[body_force]`.

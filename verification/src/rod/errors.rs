@@ -53,6 +53,9 @@ pub struct RodErrorObserver<'a> {
     jets_nodes_tau: Vec<RodJet>,
     /// Per-step (t_n, |u_n − u|_V + |w_n − u̇|_V) when `record_history` is set.
     pub history: Option<Vec<(f64, f64)>>,
+    /// The first point where the exact solution was not finite (`f64::max` would drop its NaN
+    /// and report a perfect agreement).
+    non_finite: Option<String>,
 }
 
 impl<'a> RodErrorObserver<'a> {
@@ -85,6 +88,7 @@ impl<'a> RodErrorObserver<'a> {
             jets_nodes: Vec::new(),
             jets_nodes_tau: Vec::new(),
             history: None,
+            non_finite: None,
         }
     }
 
@@ -92,6 +96,44 @@ impl<'a> RodErrorObserver<'a> {
     pub fn with_history(mut self) -> Self {
         self.history = Some(Vec::new());
         self
+    }
+
+    /// The error functionals, or why they mean nothing: the exact solution not finite somewhere
+    /// the run was compared with it, or a functional not finite.
+    pub fn checked_errors(&self) -> Result<BTreeMap<String, f64>, String> {
+        if let Some(why) = &self.non_finite {
+            return Err(why.clone());
+        }
+        let errors = self.errors();
+        match errors.iter().find(|(_, v)| !v.is_finite()) {
+            Some((k, v)) => Err(format!(
+                "the error functional {k} = {v} against the exact solution {} is not finite",
+                self.exact.name()
+            )),
+            None => Ok(errors),
+        }
+    }
+
+    /// Records the first jet in `jets` (at the points `xs`, time t) with a non-finite value.
+    fn check_jets(&mut self, xs: &[f64], jets: &[RodJet], t: f64) {
+        if self.non_finite.is_some() {
+            return;
+        }
+        let finite = |j: &RodJet| {
+            [j.u, j.u_x, j.u_t, j.u_xt, j.u_xx, j.u_xxt]
+                .iter()
+                .all(|v| v.is_finite())
+        };
+        if let Some((x, j)) = xs.iter().zip(jets).find(|(_, j)| !finite(j)) {
+            self.non_finite = Some(format!(
+                "the exact solution {} is not finite at t = {t}, x = {x} (u = {}, u_x = {}, u_t = {}): \
+                 its formula does not hold for these data, and no error can be measured against it",
+                self.exact.name(),
+                j.u,
+                j.u_x,
+                j.u_t
+            ));
+        }
     }
 
     /// The error functionals by name (`v_nodal_max` only where v was computed).
@@ -183,6 +225,9 @@ impl RodObserver for RodErrorObserver<'_> {
         let t = step.t;
         self.prepare(nodes);
         self.exact.jets_at_time(nodes, t, &mut self.jets_nodes);
+        let jets = std::mem::take(&mut self.jets_nodes);
+        self.check_jets(nodes, &jets, t);
+        self.jets_nodes = jets;
         let jl = self.jets_nodes[m];
         let sigma = self.viscosity * jl.u_xt + self.elasticity * jl.u_x;
         self.contact_stress = self.contact_stress.max((step.contact_stress - sigma).abs());
@@ -212,6 +257,12 @@ impl RodObserver for RodErrorObserver<'_> {
         }
         self.exact
             .jets_at_time(&self.quad_x, t, &mut self.jets_quad);
+        let (xs, jets) = (
+            std::mem::take(&mut self.quad_x),
+            std::mem::take(&mut self.jets_quad),
+        );
+        self.check_jets(&xs, &jets, t);
+        (self.quad_x, self.jets_quad) = (xs, jets);
         let eu = self.seminorm(nodes, step.u, |j| j.u_x);
         let ew = self.seminorm(nodes, w, |j| j.u_xt);
         self.paper_e = self.paper_e.max(eu + ew);

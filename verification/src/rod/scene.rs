@@ -95,7 +95,7 @@ pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String,
         let errs = SceneErrors {
             exact_solution: ex.name().to_string(),
             source: ex.source().to_string(),
-            errors: obs.errors(),
+            errors: obs.checked_errors().map_err(|e| format!("{source}: {e}"))?,
         };
         summary.push_str(&format!(
             "; paper E = {:.6e} against {}",

@@ -1,0 +1,187 @@
+//! Regression cases of the robustness issue ("no scene can crash, hang or lie"): example scenes
+//! changed the way a careless or hostile user would, each run through `verify scene` with a time
+//! bound. Each must end — a hang fails the test — with the outcome named here: an error that names
+//! the offending key or condition, or a run whose outputs are finite.
+
+use std::path::PathBuf;
+use std::sync::mpsc;
+use std::time::Duration;
+
+use contactlab_verify::registry::run_scene;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// The example `name` with the dotted keys of `set` replaced (TOML values written as text).
+fn mutated(name: &str, set: &[(&str, &str)]) -> String {
+    let text = std::fs::read_to_string(root().join("examples/scenes").join(name)).unwrap();
+    let mut table: toml::Table = text.parse().unwrap();
+    for (key, value) in set {
+        let parts: Vec<&str> = key.split('.').collect();
+        let mut t = &mut table;
+        for p in &parts[..parts.len() - 1] {
+            t = t
+                .entry(p.to_string())
+                .or_insert_with(|| toml::Value::Table(Default::default()))
+                .as_table_mut()
+                .unwrap();
+        }
+        let v: toml::Table = format!("v = {value}").parse().unwrap();
+        t.insert(parts[parts.len() - 1].to_string(), v["v"].clone());
+    }
+    toml::to_string(&table).unwrap()
+}
+
+/// Runs the scene text in a fresh directory within `seconds`; a run that does not answer in time
+/// fails the test (the thread is left behind).
+fn run_bounded(
+    id: &str,
+    scene: String,
+    out: Option<PathBuf>,
+    seconds: u64,
+) -> Result<String, String> {
+    let dir =
+        std::env::temp_dir().join(format!("contactlab-robustness-{id}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("scene.toml");
+    std::fs::write(&file, scene).unwrap();
+    let out = out.unwrap_or_else(|| dir.join("out"));
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(run_scene(&file, &out));
+    });
+    rx.recv_timeout(Duration::from_secs(seconds))
+        .unwrap_or_else(|_| panic!("{id}: no answer within {seconds} s (a hang)"))
+}
+
+fn expect_error(id: &str, scene: String, needles: &[&str]) {
+    match run_bounded(id, scene, None, 120) {
+        Ok(summary) => panic!("{id}: ran, expected an error naming {needles:?}: {summary}"),
+        Err(e) => {
+            for n in needles {
+                assert!(e.contains(n), "{id}: the error does not name {n:?}: {e}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_rod_whose_exact_solution_is_not_finite_is_an_error_not_a_perfect_agreement() {
+    // Once: "paper E = 0.000000e0" — the NaN errors were dropped by f64::max.
+    expect_error(
+        "rod-viscosity",
+        mutated("rod_paper_p0_2.toml", &[("rod.viscosity", "1e-6")]),
+        &["exact solution", "not finite"],
+    );
+}
+
+#[test]
+fn a_rod_oil_pressure_in_x_is_an_error_naming_foundation_p0() {
+    expect_error(
+        "rod-p0-x",
+        mutated("rod_paper_p0_2.toml", &[("foundation.p0", "\"x\"")]),
+        &["foundation.p0", "t alone"],
+    );
+}
+
+#[test]
+fn zero_graded_rod_elements_name_mesh_elements() {
+    // Once: "invalid mesh.grading = 0".
+    expect_error(
+        "rod-elements",
+        mutated(
+            "rod_paper_p0_2.toml",
+            &[("mesh.elements", "0"), ("mesh.grading", "2.0")],
+        ),
+        &["mesh.elements"],
+    );
+}
+
+#[test]
+fn fixed_size_pairs_with_extra_values_are_errors() {
+    expect_error(
+        "plane-size",
+        mutated(
+            "plane_paper_test_2d.toml",
+            &[("geometry.size", "[2.0, 1.0, 99.0]")],
+        ),
+        &["size", "expected exactly 2"],
+    );
+    expect_error(
+        "plane-divisions",
+        mutated(
+            "plane_paper_test_2d.toml",
+            &[("geometry.divisions", "[24, 12, -5]")],
+        ),
+        &["divisions"],
+    );
+}
+
+#[test]
+fn a_plane_run_that_skips_every_step_is_an_error() {
+    // Once: exit 0 after "100 steps (100 skipped for lack of equilibrium)", all zero.
+    expect_error(
+        "plane-skipped",
+        mutated(
+            "plane_paper_test_2d.toml",
+            &[("contact.p0", "\"ln(-t)\""), ("time.steps", "10")],
+        ),
+        &["no step of the run has an equilibrium"],
+    );
+}
+
+#[test]
+fn a_tiny_young_modulus_answers() {
+    // Once: the dense tridiagonal QR of the explicit bound's eigenproblem never ended.
+    let r = run_bounded(
+        "plane-young",
+        mutated(
+            "plane_paper_test_2d.toml",
+            &[
+                ("elasticity.young", "1e-308"),
+                ("geometry.divisions", "[6, 6]"),
+                ("time.steps", "5"),
+            ],
+        ),
+        None,
+        120,
+    );
+    if let Err(e) = r {
+        assert!(!e.contains("panicked"), "{e}");
+    }
+}
+
+#[test]
+fn a_disc_particle_of_extreme_mass_answers() {
+    // Once: the balancing before the eigenvalue solve never ended (inf >= 2 inf).
+    for mass in ["1e308", "1e-308", "5e-324"] {
+        let r = run_bounded(
+            &format!("disc-mass-{mass}"),
+            mutated("moving_disc_particle.toml", &[("particle.mass", mass)]),
+            None,
+            120,
+        );
+        if let Err(e) = r {
+            assert!(
+                e.contains("particle.mass") || e.contains("finite"),
+                "mass {mass}: {e}"
+            );
+        }
+    }
+}
+
+#[test]
+fn an_unwritable_out_is_refused_before_solving() {
+    // Once: a ring impact spent 36 s and then failed to write. The scene here would fail after
+    // solving (its exact solution is not finite): the error must be the --out one.
+    let e = run_bounded(
+        "out",
+        mutated("rod_paper_p0_2.toml", &[("rod.viscosity", "1e-6")]),
+        Some(PathBuf::from("/proc/contactlab-out")),
+        120,
+    )
+    .unwrap_err();
+    assert!(e.contains("--out") && !e.contains("exact solution"), "{e}");
+}
