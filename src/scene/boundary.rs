@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::InputError;
 use crate::field::{Expression, Field};
-use crate::mesh::triangle::RectangleSide;
+use crate::mesh::triangle::{RectangleSide, TriangleMesh};
 use crate::model::quasistatic::plane::{BoundarySelector, DirichletPart, Support, TractionPart};
 use crate::scene::common::missing;
 use crate::scene::field_spec::FieldSpec;
@@ -86,6 +86,41 @@ pub(crate) fn dirichlet_parts(
             })
         })
         .collect()
+}
+
+/// Every part selects at least one boundary edge of `mesh`: a selector that selects nothing (the
+/// sides of a rectangle on a disk, a `where` negative everywhere) would clamp, load or support
+/// nothing, silently. `parts` are (the section's name, its selector).
+pub(crate) fn require_selected<'a>(
+    mesh: &TriangleMesh,
+    parts: impl IntoIterator<Item = (String, &'a BoundarySelector)>,
+) -> Result<(), InputError> {
+    for (name, sel) in parts {
+        if !(0..mesh.boundary().len()).any(|e| sel.contains(mesh, e)) {
+            let (key, written) = match sel {
+                BoundarySelector::Sides(s) => (
+                    "sides",
+                    format!(
+                        "[{}]",
+                        s.iter()
+                            .map(|x| format!("\"{}\"", format!("{x:?}").to_lowercase()))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                ),
+                BoundarySelector::Predicate(_) => ("where", "(the expression)".to_string()),
+            };
+            return Err(InputError::new(
+                format!("{name}.{key}"),
+                written,
+                format!(
+                    "a selection of at least one of the body's {} boundary edges (it selects none)",
+                    mesh.boundary().len()
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The traction parts of the `[[traction]]` sections, section i named `traction[i]`.

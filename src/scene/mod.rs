@@ -19,6 +19,7 @@ pub mod dynamic;
 pub mod field_spec;
 mod fixed_array;
 pub mod foundation;
+pub mod memory;
 pub mod moving;
 pub mod plane;
 pub mod rod;

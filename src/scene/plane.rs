@@ -69,7 +69,7 @@ use crate::model::quasistatic::plane::{ContactIntegration, ContactPart, PlanePro
 use crate::model::quasistatic::plane_output::{PlaneOutputRequest, PlaneSolution};
 use crate::model::quasistatic::plane_solver::{PlaneParams, PlaneSolver, SolverPath};
 use crate::model::quasistatic::scheme::TimeScheme;
-use crate::scene::boundary::{dirichlet_parts, selector, traction_parts, vector};
+use crate::scene::boundary::{dirichlet_parts, require_selected, selector, traction_parts, vector};
 pub use crate::scene::boundary::{DirichletSection, TractionSection};
 use crate::scene::common::{check_model, missing, parse_toml, reject_keys};
 use crate::scene::field_spec::FieldSpec;
@@ -271,6 +271,18 @@ pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, 
     ]
     .map(|(k, v)| (k, v.is_some()));
     reject_keys(prefix, ("law", &m.law), &given, allowed)?;
+    // Young's modulus and Poisson's ratio in the law's admissible range, named as written (the
+    // moduli a1, a2 they give are internal: ν = 1/2 in plane strain would show as a1 = inf).
+    if let ("plane_stress" | "plane_strain", Some(nu)) = (m.law.as_str(), m.poisson) {
+        let (upper, why) = if m.law == "plane_strain" {
+            (0.5, "−1 < ν < 1/2 (plane strain; ν = 1/2 is incompressible, which this law cannot represent)")
+        } else {
+            (1.0, "−1 < ν < 1 (plane stress)")
+        };
+        if !(nu > -1.0 && nu < upper) {
+            return Err(InputError::new(format!("{prefix}.poisson"), nu, why));
+        }
+    }
     let law: Arc<dyn PlaneLaw> = match m.law.as_str() {
         "plane_stress" => Arc::new(IsotropicLinear::plane_stress(
             get("young", m.young)?,
@@ -305,6 +317,34 @@ pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, 
     Ok(law)
 }
 
+/// The bytes a plane run holds, from the counts alone (before the mesh is built): per dof the
+/// operators, the Cholesky factor of a 2D grid (fill ~ n log₂ n) and the work vectors; per
+/// snapshot u and w at the nodes and stress and von Mises per triangle; per step a few values.
+fn plane_memory(file: &PlaneSceneFile) -> Result<(), Error> {
+    let [nx, ny] = file.geometry.divisions.map(|d| d as f64);
+    let nodes = (nx + 1.0) * (ny + 1.0);
+    let dofs = 2.0 * nodes;
+    let steps = match (&file.time.times, file.time.steps) {
+        (Some(t), _) => t.len() as f64,
+        (None, Some(n)) => n as f64,
+        (None, None) => 0.0,
+    };
+    let snapshots = file.output.times.len() as f64;
+    let per_mesh = 8.0 * dofs * (70.0 + 4.0 * dofs.max(2.0).log2())
+        + 8.0 * snapshots * (4.0 * nodes + 8.0 * nx * ny);
+    let per_steps = 8.0 * 8.0 * (steps + 1.0);
+    let how = "8 B × [dofs (70 + 4 log₂ dofs) + snapshots (4 nodes + 8 n_x n_y) + 8 (N + 1)]";
+    let total = per_mesh + per_steps;
+    if per_mesh >= per_steps {
+        let [dx, dy] = file.geometry.divisions;
+        let written = format!("[{dx}, {dy}]");
+        crate::scene::memory::require_memory("geometry.divisions", written, total, how)?;
+    } else {
+        crate::scene::memory::require_memory("time.steps", steps, total, how)?;
+    }
+    Ok(())
+}
+
 impl PlaneScene {
     /// Parses and validates a scene from TOML text; `source_name` labels errors.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, Error> {
@@ -314,6 +354,7 @@ impl PlaneScene {
     /// Validates a parsed scene file.
     pub fn from_file(file: PlaneSceneFile) -> Result<Self, Error> {
         check_model(&file.model, "plane")?;
+        plane_memory(&file)?;
         let g = &file.geometry;
         let grading = match (g.grading, g.graded_towards) {
             (None, _) => [Grading::UNIFORM; 2],
@@ -352,14 +393,30 @@ impl PlaneScene {
             }),
             None => None,
         };
+        let dirichlet = dirichlet_parts(&file.dirichlet)?;
+        let traction = traction_parts(&file.traction)?;
+        require_selected(
+            &mesh,
+            dirichlet
+                .iter()
+                .enumerate()
+                .map(|(i, d)| (format!("dirichlet[{i}]"), &d.boundary))
+                .chain(
+                    traction
+                        .iter()
+                        .enumerate()
+                        .map(|(i, t)| (format!("traction[{i}]"), &t.boundary)),
+                )
+                .chain(contact.iter().map(|c| ("contact".to_string(), &c.boundary))),
+        )?;
         let problem = PlaneProblem {
             mesh,
             final_time: file.time.final_time,
             viscosity: material("viscosity", &file.viscosity)?,
             elasticity: material("elasticity", &file.elasticity)?,
             body_force: vector("body_force.value", &file.body_force.value)?,
-            dirichlet: dirichlet_parts(&file.dirichlet)?,
-            traction: traction_parts(&file.traction)?,
+            dirichlet,
+            traction,
             contact,
             initial_displacement: match &file.initial.displacement {
                 Some(v) => vector("initial.displacement", v)?,

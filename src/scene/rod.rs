@@ -183,6 +183,7 @@ impl RodScene {
             foundation: Arc::new(foundation),
         };
         problem.validate()?;
+        rod_memory(&file)?;
         let mesh = mesh(&file.mesh, problem.length)?;
         let grid = grid(&file.time, problem.final_time)?;
         let mut params = RodParams {
@@ -241,6 +242,41 @@ impl RodScene {
     pub fn solve(&self) -> Result<RodSolution, Error> {
         self.solver()?.solve(&self.output)
     }
+}
+
+/// The bytes a rod run holds, from the counts alone (before the mesh is built): per node about 16
+/// vectors of the solver plus u, w, v of each snapshot; per step the contact-end histories (6
+/// values) and the probes.
+fn rod_memory(file: &RodSceneFile) -> Result<(), Error> {
+    let nodes = match (&file.mesh.nodes, file.mesh.elements) {
+        (Some(n), _) => n.len() as f64,
+        (None, Some(m)) => m as f64 + 1.0,
+        (None, None) => return Ok(()),
+    };
+    let steps = match (&file.time.times, file.time.steps) {
+        (Some(t), _) => t.len() as f64,
+        (None, Some(n)) => n as f64,
+        (None, None) => return Ok(()),
+    };
+    let snapshots = file.output.times.len() as f64;
+    let probes = file.output.probes.len() as f64;
+    let per_nodes = 8.0 * nodes * (16.0 + 3.0 * snapshots);
+    let per_steps = 8.0 * (steps + 1.0) * (6.0 + probes);
+    let how = "8 B × [(M + 1)(16 + 3 × snapshots) + (N + 1)(6 + probes)]";
+    if per_nodes >= per_steps {
+        let written = match (&file.mesh.nodes, file.mesh.elements) {
+            (Some(n), _) => format!("({} nodes)", n.len()),
+            (None, m) => m.unwrap_or_default().to_string(),
+        };
+        crate::scene::memory::require_memory("mesh.elements", written, per_nodes + per_steps, how)?;
+    } else {
+        let written = match (&file.time.times, file.time.steps) {
+            (Some(t), _) => format!("({} times)", t.len()),
+            (None, n) => n.unwrap_or_default().to_string(),
+        };
+        crate::scene::memory::require_memory("time.steps", written, per_nodes + per_steps, how)?;
+    }
+    Ok(())
 }
 
 /// The rod's foundation law; its p0 and S act at the one contact point x = L and are functions of

@@ -185,3 +185,70 @@ fn an_unwritable_out_is_refused_before_solving() {
     .unwrap_err();
     assert!(e.contains("--out") && !e.contains("exact solution"), "{e}");
 }
+
+#[test]
+fn a_selector_that_selects_nothing_is_an_error() {
+    // Once: `[[dirichlet]] sides = ["top"]` on a disk clamped nothing, silently.
+    let text =
+        std::fs::read_to_string(root().join("examples/scenes/dynamic_ball_impact.toml")).unwrap();
+    let scene = format!("{text}\n[[dirichlet]]\nsides = [\"top\"]\nsupport = \"clamped\"\n");
+    expect_error("disk-sides", scene, &["dirichlet[0].sides", "selects none"]);
+}
+
+#[test]
+fn an_incompressible_plane_strain_poisson_ratio_names_poisson() {
+    // Once: "invalid elasticity.a1 = inf".
+    expect_error(
+        "plane-poisson",
+        mutated(
+            "plane_paper_test_2d.toml",
+            &[
+                ("elasticity.law", "\"plane_strain\""),
+                ("elasticity.poisson", "0.5"),
+            ],
+        ),
+        &["elasticity.poisson", "incompressible"],
+    );
+}
+
+/// (test id, example, keys set, key the error must name).
+type CountCase = (
+    &'static str,
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    &'static str,
+);
+
+#[test]
+fn absurd_counts_are_refused_before_allocating() {
+    // Once: "capacity overflow" panics and allocation aborts.
+    let cases: [CountCase; 4] = [
+        (
+            "rod-elements-max",
+            "rod_paper_p0_2.toml",
+            &[("mesh.elements", "9223372036854775807")],
+            "mesh.elements",
+        ),
+        (
+            "rod-steps-max",
+            "rod_paper_p0_2.toml",
+            &[("time.steps", "9223372036854775807")],
+            "time.steps",
+        ),
+        (
+            "plane-divisions",
+            "plane_paper_test_2d.toml",
+            &[("geometry.divisions", "[100000, 100000]")],
+            "geometry.divisions",
+        ),
+        (
+            "dynamic-rings",
+            "dynamic_ball_impact.toml",
+            &[("body.rings", "1000000000")],
+            "rings",
+        ),
+    ];
+    for (id, example, set, key) in cases {
+        expect_error(id, mutated(example, set), &[key]);
+    }
+}

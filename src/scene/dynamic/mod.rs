@@ -112,6 +112,7 @@ impl DynamicScene {
     /// Validates a parsed scene file.
     pub fn from_file(file: DynamicSceneFile) -> Result<Self, Error> {
         check_model(&file.model, "dynamic")?;
+        dynamic_memory(&file)?;
         let b = &file.body;
         let given = [
             ("length", b.length.is_some()),
@@ -204,6 +205,50 @@ impl DynamicScene {
     pub fn solve(&self) -> Result<DynamicSolution, Error> {
         self.solver()?.solve()
     }
+}
+
+/// The bytes a dynamic run holds, from the counts alone (before the mesh is built): per dof the
+/// operators and factor (fill ~ n log₂ n) and the work vectors; per output time u and v; per step
+/// the audit's row (about 16 values). The node count by shape: bar M + 1, rectangle
+/// (n_x + 1)(n_y + 1), disk at most 4 (rings + 1)², annulus (radial + 1) × around.
+fn dynamic_memory(file: &DynamicSceneFile) -> Result<(), Error> {
+    let b = &file.body;
+    let f = |v: Option<usize>| v.map_or(0.0, |n| n as f64);
+    let s = |v: Option<usize>| v.unwrap_or_default().to_string();
+    let (field, written, nodes, dim) = match b.shape.as_str() {
+        "bar" => ("body.elements", s(b.elements), f(b.elements) + 1.0, 1.0),
+        "rectangle" => {
+            let d = b.divisions.unwrap_or_default();
+            let [nx, ny] = d.map(|v| v as f64);
+            let written = format!("[{}, {}]", d[0], d[1]);
+            ("body.divisions", written, (nx + 1.0) * (ny + 1.0), 2.0)
+        }
+        "disk" => (
+            "body.rings",
+            s(b.rings),
+            4.0 * (f(b.rings) + 1.0).powi(2),
+            2.0,
+        ),
+        "annulus" => (
+            "body.radial",
+            format!("{} (around = {})", s(b.radial), s(b.around)),
+            (f(b.radial) + 1.0) * f(b.around),
+            2.0,
+        ),
+        _ => return Ok(()),
+    };
+    let dofs = dim * nodes;
+    let per_mesh = 8.0 * dofs * (70.0 + 4.0 * dofs.max(2.0).log2())
+        + 8.0 * 2.0 * dofs * file.output.times.len() as f64;
+    let per_steps = 8.0 * 16.0 * (file.time.steps as f64 + 1.0);
+    let how = "8 B × [dofs (70 + 4 log₂ dofs) + 2 dofs × output times + 16 (N + 1)]";
+    let total = per_mesh + per_steps;
+    if per_mesh >= per_steps {
+        crate::scene::memory::require_memory(field, written, total, how)?;
+    } else {
+        crate::scene::memory::require_memory("time.steps", file.time.steps, total, how)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@
 //! - `verify --quick`               the CI tier (cases marked `tier = "quick"`), reports in `reports/quick/`
 //! - `verify --case ID [--case ID]` selected cases
 //! - `verify --list`                the catalogue
-//! - `verify scene FILE.toml --out DIR`   run a user's scene
+//! - `verify scene FILE.toml --out DIR [--max-memory 4G]`   run a user's scene
 //! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
 //! - `verify readme [--check]`   the README's numbers, generated from reports/
 //! - `verify benches`   criterion's measurements against `benches/budgets.toml` (after `cargo bench`)
@@ -71,6 +71,11 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "scene-out")]
         out: PathBuf,
+        /// The most memory the run may hold (bytes, or with K, M, G, T): a scene whose estimate
+        /// is above it is refused before anything is allocated (default: CONTACTLAB_MAX_MEMORY,
+        /// else half of the machine's memory).
+        #[arg(long)]
+        max_memory: Option<String>,
     },
     /// Regenerate the README's numbers (its `<!-- generated: … -->` blocks) from reports/;
     /// with --check, exit 1 when they differ instead.
@@ -114,7 +119,22 @@ fn repository_root() -> PathBuf {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match &cli.command {
-        Some(Command::Scene { file, out }) => {
+        Some(Command::Scene {
+            file,
+            out,
+            max_memory,
+        }) => {
+            if let Some(text) = max_memory {
+                match contactlab::scene::memory::parse_size(text) {
+                    Some(bytes) => contactlab::scene::memory::set_memory_limit(bytes),
+                    None => {
+                        eprintln!(
+                            "error: invalid --max-memory = {text}: expected a size in bytes, e.g. 4G or 512M"
+                        );
+                        return ExitCode::from(2);
+                    }
+                }
+            }
             return match registry::run_scene(file, out) {
                 Ok(summary) => {
                     println!("{summary}");
