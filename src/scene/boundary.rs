@@ -91,7 +91,7 @@ pub(crate) fn dirichlet_parts(
 /// Every part selects at least one boundary edge of `mesh`: a selector that selects nothing (the
 /// sides of a rectangle on a disk, a `where` negative everywhere) would clamp, load or support
 /// nothing, silently. `parts` are (the section's name, its selector).
-pub(crate) fn require_selected<'a>(
+fn require_selected<'a>(
     mesh: &TriangleMesh,
     parts: impl IntoIterator<Item = (String, &'a BoundarySelector)>,
 ) -> Result<(), InputError> {
@@ -121,6 +121,30 @@ pub(crate) fn require_selected<'a>(
         }
     }
     Ok(())
+}
+
+/// [`require_selected`] for the Dirichlet and traction parts (named `dirichlet[i]`,
+/// `traction[i]`) and a contact part.
+pub(crate) fn require_parts_selected(
+    mesh: &TriangleMesh,
+    dirichlet: &[DirichletPart],
+    traction: &[TractionPart],
+    contact: Option<&BoundarySelector>,
+) -> Result<(), InputError> {
+    require_selected(
+        mesh,
+        dirichlet
+            .iter()
+            .enumerate()
+            .map(|(i, d)| (format!("dirichlet[{i}]"), &d.boundary))
+            .chain(
+                traction
+                    .iter()
+                    .enumerate()
+                    .map(|(i, t)| (format!("traction[{i}]"), &t.boundary)),
+            )
+            .chain(contact.map(|c| ("contact".to_string(), c))),
+    )
 }
 
 /// The traction parts of the `[[traction]]` sections, section i named `traction[i]`.

@@ -69,7 +69,9 @@ use crate::model::quasistatic::plane::{ContactIntegration, ContactPart, PlanePro
 use crate::model::quasistatic::plane_output::{PlaneOutputRequest, PlaneSolution};
 use crate::model::quasistatic::plane_solver::{PlaneParams, PlaneSolver, SolverPath};
 use crate::model::quasistatic::scheme::TimeScheme;
-use crate::scene::boundary::{dirichlet_parts, require_selected, selector, traction_parts, vector};
+use crate::scene::boundary::{
+    dirichlet_parts, require_parts_selected, selector, traction_parts, vector,
+};
 pub use crate::scene::boundary::{DirichletSection, TractionSection};
 use crate::scene::common::{check_model, missing, parse_toml, reject_keys};
 use crate::scene::field_spec::FieldSpec;
@@ -395,19 +397,11 @@ impl PlaneScene {
         };
         let dirichlet = dirichlet_parts(&file.dirichlet)?;
         let traction = traction_parts(&file.traction)?;
-        require_selected(
+        require_parts_selected(
             &mesh,
-            dirichlet
-                .iter()
-                .enumerate()
-                .map(|(i, d)| (format!("dirichlet[{i}]"), &d.boundary))
-                .chain(
-                    traction
-                        .iter()
-                        .enumerate()
-                        .map(|(i, t)| (format!("traction[{i}]"), &t.boundary)),
-                )
-                .chain(contact.iter().map(|c| ("contact".to_string(), &c.boundary))),
+            &dirichlet,
+            &traction,
+            contact.as_ref().map(|c| &c.boundary),
         )?;
         let problem = PlaneProblem {
             mesh,

@@ -11,7 +11,7 @@ use crate::mesh::triangle::{Grading, TriangleMesh};
 use crate::model::dynamic::contact_model::ContactModel;
 use crate::model::dynamic::plane_body::{PlaneBody, PlaneBodyData};
 use crate::model::quasistatic::plane::BoundarySelector;
-use crate::scene::boundary::{dirichlet_parts, require_selected, selector, traction_parts};
+use crate::scene::boundary::{dirichlet_parts, require_parts_selected, selector, traction_parts};
 use crate::scene::common::{missing, reject_keys};
 use crate::scene::dynamic::body::{BodyParts, SceneBody};
 use crate::scene::dynamic::contact::{friction, treatment};
@@ -113,27 +113,13 @@ pub(super) fn plane(file: &DynamicSceneFile, mesh: TriangleMesh) -> Result<BodyP
     };
     let dirichlet = dirichlet_parts(&file.dirichlet)?;
     let traction = traction_parts(&file.traction)?;
-    require_selected(
-        &mesh,
-        dirichlet
-            .iter()
-            .enumerate()
-            .map(|(i, d)| (format!("dirichlet[{i}]"), &d.boundary))
-            .chain(
-                traction
-                    .iter()
-                    .enumerate()
-                    .map(|(i, t)| (format!("traction[{i}]"), &t.boundary)),
-            ),
-    )?;
-    if let Some(c) = file
-        .contact
-        .as_ref()
-        .filter(|c| !c.sides.is_empty() || c.where_.is_some())
-    {
-        let sel = selector("contact", &c.sides, c.where_.as_ref())?;
-        require_selected(&mesh, [("contact".to_string(), &sel)])?;
-    }
+    let contact_part = match file.contact.as_ref() {
+        Some(c) if !c.sides.is_empty() || c.where_.is_some() => {
+            Some(selector("contact", &c.sides, c.where_.as_ref())?)
+        }
+        _ => None,
+    };
+    require_parts_selected(&mesh, &dirichlet, &traction, contact_part.as_ref())?;
     let body_force = match &file.body_force {
         Some(s) => pair("body_force.value", &Some(s.value.clone()))?,
         None => [Field::Constant(0.0), Field::Constant(0.0)],
