@@ -43,9 +43,24 @@ pub struct Expression {
     order: Vec<Variable>,
 }
 
+/// The longest expression a scene may give (the longest in the examples and cases: 520).
+pub const MAX_EXPRESSION_LENGTH: usize = 4000;
+
 impl Expression {
     /// Parses `text`; `field` names the scene field in the error.
     pub fn parse(field: &str, text: &str) -> Result<Self, InputError> {
+        // Bounded before parsing: a 50 000-term `x+x+…` once made every evaluation (per quadrature
+        // point and step) cost milliseconds, and a run of hours look like a hang.
+        if text.len() > MAX_EXPRESSION_LENGTH {
+            return Err(InputError::new(
+                field,
+                format!("({} characters)", text.len()),
+                format!(
+                    "an expression of at most {MAX_EXPRESSION_LENGTH} characters (a formula, not \
+                     a table: tabulated data belong in a mesh or a file format)"
+                ),
+            ));
+        }
         let flat = exmex::parse::<f64>(text).map_err(|e| {
             InputError::new(
                 field,
@@ -243,6 +258,17 @@ mod tests {
         let err = Expression::parse("rod.load", "3*z").err().unwrap();
         assert_eq!(err.field, "rod.load");
         assert!(err.expected.contains('z'), "{err}");
+    }
+
+    #[test]
+    fn an_overlong_expression_is_refused_before_parsing() {
+        let text = vec!["x"; 25_000].join("+");
+        let err = Expression::parse("traction[0].value[1]", &text)
+            .err()
+            .unwrap();
+        assert_eq!(err.field, "traction[0].value[1]");
+        assert!(err.expected.contains("at most 4000 characters"), "{err}");
+        assert!(Expression::parse("rod.load", &vec!["x"; 1000].join("+")).is_ok());
     }
 
     #[test]
