@@ -113,6 +113,10 @@ impl ElasticBody for ScaledForce {
         self.inner
             .add_discrete_gradient_tangent(u0, u1, scale * self.factor, v)
     }
+    fn add_discrete_gradient_skew(&self, u0: &[f64], u1: &[f64], scale: f64, v: &mut [f64]) {
+        self.inner
+            .add_discrete_gradient_skew(u0, u1, scale * self.factor, v)
+    }
     fn load_into(&self, t: f64, out: &mut [f64]) {
         self.inner.load_into(t, out)
     }

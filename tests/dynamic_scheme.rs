@@ -134,6 +134,68 @@ fn plane_tangent_matches_central_differences_of_internal_forces() {
 }
 
 #[test]
+fn discrete_gradient_symmetric_plus_skew_tangent_is_the_exact_derivative() {
+    // J = sym + skew of ∂F^algo/∂u1 against central differences of F^algo(u0, ·): J d and Jᵀ d
+    // (the symmetric part alone matches neither once the skew part is not negligible; a sign
+    // error in the skew assembly swaps the two products)
+    let body = ring(Arc::new(
+        NeoHooke::from_young_poisson(1e6, 0.3).expect("law"),
+    ));
+    let n = body.dofs();
+    let u0 = pseudo_random(n, 0.03, 19);
+    let u1: Vec<f64> = u0
+        .iter()
+        .zip(pseudo_random(n, 0.05, 23))
+        .map(|(a, b)| a + b)
+        .collect();
+    let dir = pseudo_random(n, 1.0, 29);
+    let pattern = body.pattern();
+    let mut sym = vec![0.0; pattern.nnz()];
+    let mut skew = vec![0.0; pattern.nnz()];
+    body.add_discrete_gradient_tangent(&u0, &u1, 1.0, &mut sym);
+    body.add_discrete_gradient_skew(&u0, &u1, 1.0, &mut skew);
+    // J d with J_ij = S_ij + W_ij (i < j), J_ji = S_ij − W_ij, from the upper triangles
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    let (mut jd, mut sd) = (vec![0.0; n], vec![0.0; n]);
+    for j in 0..n {
+        for s in cp[j]..cp[j + 1] {
+            let i = ri[s];
+            jd[i] += (sym[s] + skew[s]) * dir[j];
+            sd[i] += sym[s] * dir[j];
+            if i != j {
+                jd[j] += (sym[s] - skew[s]) * dir[i];
+                sd[j] += sym[s] * dir[i];
+            }
+        }
+    }
+    let h = 1e-6;
+    let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
+    let up: Vec<f64> = u1.iter().zip(&dir).map(|(a, b)| a + h * b).collect();
+    let um: Vec<f64> = u1.iter().zip(&dir).map(|(a, b)| a - h * b).collect();
+    assert!(body.discrete_gradient_force(&u0, &up, &mut fp));
+    assert!(body.discrete_gradient_force(&u0, &um, &mut fm));
+    let fd: Vec<f64> = (0..n).map(|i| (fp[i] - fm[i]) / (2.0 * h)).collect();
+    let scale = fd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = |a: &[f64]| {
+        a.iter()
+            .zip(&fd)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+            / scale
+    };
+    assert!(
+        err(&jd) <= 1e-6,
+        "exact tangent vs differences: {}",
+        err(&jd)
+    );
+    // the skew part is not negligible at this state: the symmetric part alone misses by far more
+    assert!(
+        err(&sd) > 100.0 * err(&jd).max(1e-8),
+        "symmetric part: {}",
+        err(&sd)
+    );
+}
+
+#[test]
 fn internal_forces_are_the_gradient_of_the_stored_energy() {
     let body = ring(Arc::new(
         NeoHooke::from_young_poisson(1e6, 0.3).expect("law"),

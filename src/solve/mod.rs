@@ -18,4 +18,5 @@ pub mod quadratic_eigen;
 pub mod scalar_semismooth;
 pub mod small_eigenvalues;
 pub mod sparse_cholesky;
+pub mod sparse_lu;
 pub mod tridiagonal;

@@ -5,13 +5,19 @@
 //! complement on those dofs, so a step that condenses the contact onto them costs one forward and
 //! one backward pass (split here) instead of two full solves. The symbolic analysis is done once;
 //! numeric refactorizations reuse it (Newton iterations, new step sizes).
+//!
+//! A matrix that may be indefinite (the tangent of Gonzalez's discrete gradient at large steps)
+//! goes through [`SparseCholesky::factor_symmetric`]: LLᵀ first, and when a pivot is not
+//! positive, faer's intranode LBLᵀ (Bunch–Kaufman pivoting inside each supernode) on the same
+//! symbolic analysis. The fallbacks are counted; solves with such a factor are checked by their
+//! residual (pivoting is restricted to a supernode, so a small pivot outside it is not avoided).
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, supernodal::SupernodalLltRef, CholeskySymbolicParams,
-    SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    IntranodeLbltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::{amd, SupernodalThreshold};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -70,6 +76,30 @@ impl<'a> Supernodes<'a> {
     }
 }
 
+/// The numeric factorization that holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FactorKind {
+    /// A = L Lᵀ (positive definite).
+    Llt,
+    /// P A Pᵀ = L B Lᵀ with B block diagonal (1 × 1 and 2 × 2 blocks), intranode pivoting.
+    Lblt,
+}
+
+/// The storage of an intranode LBLᵀ factorization (allocated at the first fallback).
+struct Lblt {
+    values: Vec<f64>,
+    subdiag: Vec<f64>,
+    fwd: Vec<usize>,
+    inv: Vec<usize>,
+    solve: MemBuffer,
+}
+
+impl std::fmt::Debug for Lblt {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Lblt({} values)", self.values.len())
+    }
+}
+
 /// A symbolic analysis and (after [`SparseCholesky::factor`]) a numeric factorization.
 #[derive(Debug)]
 pub struct SparseCholesky {
@@ -82,6 +112,9 @@ pub struct SparseCholesky {
     factor_stack: StackReq,
     factored: bool,
     operator: String,
+    kind: FactorKind,
+    lblt: Option<Box<Lblt>>,
+    indefinite_factorizations: usize,
 }
 
 impl SparseCholesky {
@@ -149,7 +182,20 @@ impl SparseCholesky {
             factor_stack,
             factored: false,
             operator: operator.to_string(),
+            kind: FactorKind::Llt,
+            lblt: None,
+            indefinite_factorizations: 0,
         })
+    }
+
+    /// The factorization that holds (after a successful factor).
+    pub fn kind(&self) -> FactorKind {
+        self.kind
+    }
+
+    /// Factorizations that fell back to LBLᵀ so far.
+    pub fn indefinite_factorizations(&self) -> usize {
+        self.indefinite_factorizations
     }
 
     /// The order n.
@@ -209,6 +255,7 @@ impl SparseCholesky {
                     });
                 }
                 self.factored = true;
+                self.kind = FactorKind::Llt;
                 Ok(())
             }
             Err(e) => {
@@ -224,6 +271,83 @@ impl SparseCholesky {
                 })
             }
         }
+    }
+
+    /// Factors a symmetric matrix that may be indefinite: LLᵀ, and when a pivot is not positive
+    /// the intranode LBLᵀ on the same symbolic analysis (counted in
+    /// [`Self::indefinite_factorizations`]). A non-finite entry, or a non-finite LBLᵀ factor (an
+    /// exactly singular matrix), is a [`SolveError::Singular`].
+    pub fn factor_symmetric(
+        &mut self,
+        pattern: &SymmetricPattern,
+        values: &[f64],
+    ) -> Result<(), SolveError> {
+        match self.factor(pattern, values) {
+            Ok(()) => Ok(()),
+            Err(SolveError::Singular { pivot, .. })
+                if pivot.is_nan() && values.iter().all(|v| v.is_finite()) =>
+            {
+                self.factor_lblt(pattern, values)
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    fn factor_lblt(
+        &mut self,
+        pattern: &SymmetricPattern,
+        values: &[f64],
+    ) -> Result<(), SolveError> {
+        let n = self.n;
+        if self.lblt.is_none() {
+            let solve = self.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
+            self.lblt = Some(Box::new(Lblt {
+                values: vec![0.0; self.symbolic.len_val()],
+                subdiag: vec![0.0; n],
+                fwd: vec![0; n],
+                inv: vec![0; n],
+                solve: MemBuffer::new(solve),
+            }));
+        }
+        let Some(lblt) = self.lblt.as_mut() else {
+            unreachable!("allocated above")
+        };
+        let a = SparseColMatRef::new(
+            SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx()),
+            values,
+        );
+        let scratch = self
+            .symbolic
+            .factorize_numeric_intranode_lblt_scratch::<f64>(Par::Seq, Default::default());
+        let mut mem = MemBuffer::new(scratch);
+        self.symbolic.factorize_numeric_intranode_lblt(
+            &mut lblt.values,
+            &mut lblt.subdiag,
+            &mut lblt.fwd,
+            &mut lblt.inv,
+            a,
+            Side::Upper,
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        self.factored = false;
+        if lblt
+            .values
+            .iter()
+            .chain(&lblt.subdiag)
+            .any(|v| !v.is_finite())
+        {
+            return Err(SolveError::Singular {
+                operator: format!("{} (indefinite, and singular in LBLᵀ)", self.operator),
+                row: 0,
+                pivot: f64::NAN,
+            });
+        }
+        self.indefinite_factorizations += 1;
+        self.kind = FactorKind::Lblt;
+        self.factored = true;
+        Ok(())
     }
 
     /// A workspace for up to `columns` right-hand sides.
@@ -250,8 +374,21 @@ impl SparseCholesky {
     }
 
     /// Solves A x = b in place (original order).
-    pub fn solve_in_place(&self, x: &mut [f64], ws: &mut CholeskyWorkspace) {
+    pub fn solve_in_place(&mut self, x: &mut [f64], ws: &mut CholeskyWorkspace) {
         debug_assert!(self.factored);
+        if self.kind == FactorKind::Lblt {
+            if let Some(lblt) = self.lblt.as_mut() {
+                let perm = PermRef::new_checked(&lblt.fwd, &lblt.inv, self.n);
+                IntranodeLbltRef::new(&self.symbolic, &lblt.values, &lblt.subdiag, perm)
+                    .solve_in_place_with_conj(
+                        Conj::No,
+                        MatMut::from_column_major_slice_mut(x, self.n, 1),
+                        Par::Seq,
+                        MemStack::new(&mut lblt.solve),
+                    );
+                return;
+            }
+        }
         let p = &mut ws.permuted[..self.n];
         for (new, &old) in self.perm.iter().enumerate() {
             p[new] = x[old];
@@ -525,6 +662,45 @@ mod tests {
                 assert!((prod - id).abs() < 1e-12, "({i}, {j}): {prod}");
             }
         }
+    }
+
+    #[test]
+    fn indefinite_matrix_falls_back_to_lblt_and_solves() {
+        let n = 40;
+        let (pat, mut v) = laplacian(n);
+        // a negative shift makes the matrix indefinite (eigenvalues of the grounded Laplacian lie
+        // in (0, 4]) but not singular at this n
+        for i in 0..n {
+            let d = pat.diagonal_slot(i).unwrap();
+            v[d] -= 1.3;
+        }
+        let mut c = SparseCholesky::analyze(&pat, &[], "K").unwrap();
+        assert!(
+            c.factor(&pat, &v).is_err(),
+            "LLᵀ must refuse an indefinite matrix"
+        );
+        c.factor_symmetric(&pat, &v).unwrap();
+        assert_eq!(c.kind(), FactorKind::Lblt);
+        assert_eq!(c.indefinite_factorizations(), 1);
+        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
+        let mut ws = c.workspace(1);
+        let mut x = b.clone();
+        c.solve_in_place(&mut x, &mut ws);
+        let mut ax = vec![0.0; n];
+        pat.symmetric_mul(&v, &x, &mut ax);
+        for i in 0..n {
+            assert!(
+                (ax[i] - b[i]).abs() < 1e-10,
+                "row {i}: {} vs {}",
+                ax[i],
+                b[i]
+            );
+        }
+        // a definite matrix afterwards goes back to LLᵀ
+        let (_, spd) = laplacian(n);
+        c.factor_symmetric(&pat, &spd).unwrap();
+        assert_eq!(c.kind(), FactorKind::Llt);
+        assert_eq!(c.indefinite_factorizations(), 1);
     }
 
     #[test]

@@ -252,3 +252,62 @@ fn absurd_counts_are_refused_before_allocating() {
         expect_error(id, mutated(example, set), &[key]);
     }
 }
+
+#[test]
+fn gonzalez_runs_through_a_step_of_three_contact_durations() {
+    // Once: "singular or indefinite dynamic step Jacobian αM + θK_T at step 1" — the symmetric
+    // part of the discrete-gradient tangent is indefinite at k = 5e-2 (α = 800, E = 1e8), and
+    // the Cholesky factorization refused it. Now the exact tangent's LU takes over.
+    let scene = r#"
+model = "dynamic"
+title = "ring impact, k = 5e-2"
+[body]
+shape = "annulus"
+center = [0.0, 0.5]
+inner = 0.3
+outer = 0.5
+radial = 2
+around = 24
+density = 1000.0
+[material]
+law = "neo_hooke"
+young = 1e8
+poisson = 0.3
+[time]
+final_time = 0.05
+steps = 1
+scheme = "gonzalez"
+[initial]
+velocity = [2.0, -5.0]
+[contact]
+level = 0.0
+where = "0.5 - y"
+treatment = "energy_consistent"
+stiffness = 1e10
+"#;
+    let summary = run_bounded("gonzalez-large-step", scene.to_string(), None, 120)
+        .unwrap_or_else(|e| panic!("the run must complete: {e}"));
+    assert!(summary.contains("1 of 1 steps"), "{summary}");
+    let number_after = |key: &str| -> f64 {
+        let at = summary
+            .find(key)
+            .unwrap_or_else(|| panic!("no {key:?} in {summary}"));
+        summary[at + key.len()..]
+            .split([',', ' ', ';', '('])
+            .find(|t| !t.is_empty())
+            .and_then(|t| t.parse().ok())
+            .unwrap_or_else(|| panic!("no number after {key:?} in {summary}"))
+    };
+    // the energy identity (1.48) at round-off of the step, relative to E_ref
+    assert!(number_after("(1.48) ") < 1e-12, "{summary}");
+    // the fallback did the work: some factorizations were of an indefinite Jacobian
+    let at = summary
+        .find(" of an indefinite")
+        .expect("the statistic is reported");
+    let count: usize = summary[..at]
+        .rsplit('(')
+        .next()
+        .and_then(|t| t.trim().parse().ok())
+        .expect("a count");
+    assert!(count > 0, "{summary}");
+}

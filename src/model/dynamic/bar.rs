@@ -210,6 +210,16 @@ impl ElasticBody for BarBody {
         }
     }
 
+    /// The bar's element tangent [k, −k; −k, k] is symmetric: no skew part.
+    fn add_discrete_gradient_skew(
+        &self,
+        _u0: &[f64],
+        _u1: &[f64],
+        _scale: f64,
+        _values: &mut [f64],
+    ) {
+    }
+
     fn load_into(&self, t: f64, out: &mut [f64]) {
         out.iter_mut().for_each(|v| *v = 0.0);
         if self.load_is_zero() {

@@ -130,6 +130,12 @@ pub trait ElasticBody: Send + Sync + Debug {
     /// derivative (a symmetric Newton tangent; the skew part is dropped).
     fn add_discrete_gradient_tangent(&self, u0: &[f64], u1: &[f64], scale: f64, values: &mut [f64]);
 
+    /// Adds `scale` · skew(∂F^algo/∂u1) (u0, u1) = `scale` · (∂F^algo/∂u1 − (∂F^algo/∂u1)ᵀ)/2 to
+    /// `values` (upper triangle W_ij, i < j, on the pattern; W_ji = −W_ij): with
+    /// [`Self::add_discrete_gradient_tangent`] the exact derivative. Adds nothing for a body
+    /// whose discrete-gradient tangent is symmetric (the bar: one strain component).
+    fn add_discrete_gradient_skew(&self, u0: &[f64], u1: &[f64], scale: f64, values: &mut [f64]);
+
     /// The external load f(t) (body forces and tractions) into `out`.
     fn load_into(&self, t: f64, out: &mut [f64]);
 

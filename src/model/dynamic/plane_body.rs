@@ -325,6 +325,23 @@ impl ElasticBody for PlaneBody {
         }
     }
 
+    fn add_discrete_gradient_skew(&self, u0: &[f64], u1: &[f64], scale: f64, values: &mut [f64]) {
+        for e in 0..self.elements.len() {
+            let f0 = self.deformation_gradient(u0, e);
+            let f1 = self.deformation_gradient(u1, e);
+            let k = self.element_matrix(e, scale, false, |df| {
+                self.data.law.discrete_gradient_tangent(&f0, &f1, df)
+            });
+            let mut w = [0.0; 36];
+            for p in 0..6 {
+                for q in 0..6 {
+                    w[p * 6 + q] = 0.5 * (k[p * 6 + q] - k[q * 6 + p]);
+                }
+            }
+            self.ops.pattern.add_element(values, e, &w);
+        }
+    }
+
     fn load_into(&self, t: f64, out: &mut [f64]) {
         out.iter_mut().for_each(|v| *v = 0.0);
         let mesh = &self.data.mesh;

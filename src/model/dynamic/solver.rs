@@ -65,6 +65,8 @@ pub struct DynamicStats {
     pub newton_iterations: usize,
     pub max_newton_iterations: usize,
     pub factorizations: usize,
+    /// Of those, factorizations of an indefinite Jacobian (LBLᵀ fallback; full path only).
+    pub indefinite_factorizations: usize,
     pub backtracks: usize,
     pub stage_b_steps: usize,
     /// Largest final relative residual of a Newton solve.
@@ -621,6 +623,10 @@ impl DynamicSolver {
         stats.factorizations = match &op {
             Operator::Condensed(c) => c.factorizations(),
             Operator::Full(f) => f.factorizations(),
+        };
+        stats.indefinite_factorizations = match &op {
+            Operator::Condensed(c) => c.indefinite_factorizations(),
+            Operator::Full(f) => f.indefinite_factorizations(),
         };
         Ok(DynamicSolution {
             audit,

@@ -25,7 +25,8 @@ use faer::{Mat, Side};
 use crate::error::SolveError;
 use crate::model::dynamic::body::ElasticBody;
 use crate::model::dynamic::scheme::DynamicScheme;
-use crate::solve::sparse_cholesky::{CholeskyWorkspace, SparseCholesky};
+use crate::solve::sparse_cholesky::{CholeskyWorkspace, FactorKind, SparseCholesky};
+use crate::solve::sparse_lu::SparseLu;
 
 /// The linearized step equation without its contact terms.
 pub trait StepOperator {
@@ -57,6 +58,11 @@ pub trait StepOperator {
 
     /// Numeric factorizations so far.
     fn factorizations(&self) -> usize;
+
+    /// Of those, the factorizations of an indefinite matrix (LBLᵀ instead of LLᵀ).
+    fn indefinite_factorizations(&self) -> usize {
+        0
+    }
 }
 
 /// Where F̄ is evaluated and with which tangent weight θ.
@@ -90,6 +96,13 @@ pub struct FullStep {
     ws: CholeskyWorkspace,
     scratch_u: Vec<f64>,
     scratch_f: Vec<f64>,
+    scratch_rhs: Vec<f64>,
+    /// u_{n−1} + d of the last Jacobian, and the exact tangent's skew part there with its LU
+    /// (Gonzalez on a nonlinear body, once the symmetric tangent is indefinite).
+    jacobian_u: Vec<f64>,
+    skew: Vec<f64>,
+    lu: Option<Box<SparseLu>>,
+    lu_factorizations: usize,
     /// For each unknown that may be constrained: the (other unknown, slot) entries of its row.
     rows: Vec<Option<Vec<(usize, usize)>>>,
     diag_slots: Vec<usize>,
@@ -161,6 +174,11 @@ impl FullStep {
             ws,
             scratch_u: vec![0.0; n],
             scratch_f: vec![0.0; n],
+            scratch_rhs: vec![0.0; n],
+            jacobian_u: vec![0.0; n],
+            skew: Vec::new(),
+            lu: None,
+            lu_factorizations: 0,
             rows,
             diag_slots,
             factorizations: 0,
@@ -264,6 +282,7 @@ impl StepOperator for FullStep {
                 for ((u, p), di) in self.scratch_u.iter_mut().zip(&self.u_prev).zip(d) {
                     *u = p + di;
                 }
+                self.jacobian_u.copy_from_slice(&self.scratch_u);
                 self.body.add_discrete_gradient_tangent(
                     &self.u_prev,
                     &self.scratch_u,
@@ -299,16 +318,111 @@ impl StepOperator for FullStep {
         for &(j, c) in fixed {
             rhs[j] = self.values[self.diag_slots[j]] * c;
         }
-        self.chol.factor(self.body.pattern(), &self.values)?;
+        self.scratch_rhs.copy_from_slice(rhs);
         self.factorizations += 1;
-        self.chol.solve_in_place(rhs, &mut self.ws);
+        let exact_is_unsymmetric =
+            self.evaluation == Evaluation::DiscreteGradient && !self.body.is_linear();
+        let result = if exact_is_unsymmetric {
+            self.chol.factor(self.body.pattern(), &self.values)
+        } else {
+            self.chol
+                .factor_symmetric(self.body.pattern(), &self.values)
+        };
+        match result {
+            Ok(()) if self.chol.kind() == FactorKind::Llt => {
+                self.chol.solve_in_place(rhs, &mut self.ws);
+                return Ok(());
+            }
+            Ok(()) => {
+                self.chol.solve_in_place(rhs, &mut self.ws);
+                let pattern = self.body.pattern();
+                pattern.symmetric_mul(&self.values, rhs, &mut self.scratch_f);
+            }
+            Err(SolveError::Singular { pivot, .. }) if exact_is_unsymmetric && pivot.is_nan() => {
+                self.solve_exact_tangent(fixed, rhs)?;
+            }
+            Err(e) => return Err(e),
+        }
+        // the indefinite paths are accepted by their backward error (LBLᵀ pivots only inside
+        // supernodes; an LU pivot can be tiny)
+        let (mut r, mut scale) = (0.0f64, max_abs(&self.scratch_rhs));
+        for (ax, b) in self.scratch_f.iter().zip(&self.scratch_rhs) {
+            r = r.max((ax - b).abs());
+            scale = scale.max(ax.abs());
+        }
+        let accepted = r <= INDEFINITE_BACKWARD_ERROR * scale; // false for NaN
+        if !accepted {
+            return Err(SolveError::Singular {
+                operator: format!(
+                    "dynamic step Jacobian αM + θK_T (indefinite; the solve's residual is \
+                     {:.1e} of the right-hand side's scale, above {INDEFINITE_BACKWARD_ERROR:.0e})",
+                    r / scale
+                ),
+                row: 0,
+                pivot: f64::NAN,
+            });
+        }
         Ok(())
     }
 
     fn factorizations(&self) -> usize {
         self.factorizations
     }
+
+    fn indefinite_factorizations(&self) -> usize {
+        self.chol.indefinite_factorizations() + self.lu_factorizations
+    }
 }
+
+impl FullStep {
+    /// The Newton step with the exact (unsymmetric) tangent of Gonzalez's discrete gradient,
+    /// J = αM + ∂F^algo/∂u1 (+ contact slopes; ∂Π^algo/∂F1 → ½ ∂P/∂F as F1 → F0): the symmetric part is `values` (constraints
+    /// already eliminated there), the skew part is assembled at the last Jacobian's state and
+    /// eliminated on the same rows; J is factored by sparse LU. Leaves J Δ in `scratch_f`.
+    fn solve_exact_tangent(
+        &mut self,
+        fixed: &[(usize, f64)],
+        rhs: &mut [f64],
+    ) -> Result<(), SolveError> {
+        if self.lu.is_none() {
+            self.lu = Some(Box::new(SparseLu::analyze(
+                self.body.pattern(),
+                "dynamic step Jacobian αM + θ∂F^algo/∂u1 (exact, unsymmetric)",
+            )?));
+            self.skew = vec![0.0; self.values.len()];
+        }
+        self.skew.iter_mut().for_each(|w| *w = 0.0);
+        self.body
+            .add_discrete_gradient_skew(&self.u_prev, &self.jacobian_u, 1.0, &mut self.skew);
+        rhs.copy_from_slice(&self.scratch_rhs);
+        for &(j, c) in fixed {
+            if let Some(row) = self.rows[j].as_ref() {
+                // J_ij = S_ij + W_ij above the diagonal (i < j), S_ji − W_ji below it
+                for &(i, slot) in row {
+                    let sign = if i < j { 1.0 } else { -1.0 };
+                    rhs[i] -= sign * self.skew[slot] * c;
+                    self.skew[slot] = 0.0;
+                }
+            }
+        }
+        for &(j, c) in fixed {
+            rhs[j] = self.values[self.diag_slots[j]] * c;
+        }
+        self.scratch_rhs.copy_from_slice(rhs);
+        let Some(lu) = self.lu.as_mut() else {
+            unreachable!("analyzed above")
+        };
+        lu.factor_solve(&self.values, &self.skew, rhs)?;
+        lu.mul(rhs, &mut self.scratch_f);
+        self.lu_factorizations += 1;
+        Ok(())
+    }
+}
+
+/// The largest relative residual ‖A x − b‖_∞ / max(‖b‖_∞, ‖A x‖_∞) accepted from an indefinite
+/// solve (LBLᵀ or LU): a stable solve leaves a few n ε; 1e-8 still gives Newton a direction
+/// accurate to 8 digits.
+const INDEFINITE_BACKWARD_ERROR: f64 = 1e-8;
 
 /// The step of a linear body condensed onto its contact dofs Γ.
 #[derive(Debug)]

@@ -175,6 +175,14 @@ impl Run {
         }
     }
 
+    /// Factorizations of an indefinite step Jacobian (the LBLᵀ or exact-tangent LU fallback).
+    pub(super) fn indefinite_factorizations(&self) -> usize {
+        match &self.run {
+            Ok(r) => r.stats().indefinite_factorizations,
+            Err(_) => 0,
+        }
+    }
+
     pub(super) fn summary_value(
         &self,
         f: impl Fn(&contactlab::model::dynamic::audit::AuditSummary) -> f64,

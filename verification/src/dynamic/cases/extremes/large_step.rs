@@ -98,6 +98,7 @@ pub(super) fn run_large_step(
                 format!("{:.4e}", run.max_penetration()),
                 format!("{its} / {max_it}"),
                 format!("{}", run.backtracks()),
+                format!("{}", run.indefinite_factorizations()),
             ]);
         }
     }
@@ -137,6 +138,7 @@ pub(super) fn run_large_step(
             "max penetration",
             "Newton its (total / max)",
             "backtracks",
+            "indefinite factorizations",
         ]),
         rows,
     });
