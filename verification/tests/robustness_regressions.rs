@@ -311,3 +311,34 @@ stiffness = 1e10
         .expect("a count");
     assert!(count > 0, "{summary}");
 }
+
+#[test]
+fn a_block_resting_under_gravity_converges_at_its_round_off_floor() {
+    // Once: "semismooth Newton did not converge in 60 iterations (residual 1.46e-12, tolerance
+    // 1e-12)" at step 1 — the stress round-off ε(λ + 2μ) sets a floor above 1e-12 s.
+    let scene = mutated(
+        "dynamic_block_drop.toml",
+        &[("initial.velocity", "[0.0, 0.0]")],
+    );
+    let summary = run_bounded("block-at-rest", scene, None, 120)
+        .unwrap_or_else(|e| panic!("the run must complete: {e}"));
+    assert!(summary.contains("100 of 100 steps"), "{summary}");
+    let at = summary
+        .find(" stopped at the residual's round-off floor")
+        .expect("the statistic is reported");
+    let floor_stops: usize = summary[..at]
+        .rsplit(' ')
+        .next()
+        .and_then(|t| t.parse().ok())
+        .expect("a count");
+    assert!(floor_stops > 0, "{summary}");
+    // the energy identity still holds at round-off
+    let key = "(1.48) ";
+    let i = summary.find(key).expect("(1.48)") + key.len();
+    let drift: f64 = summary[i..]
+        .split([',', ' ', ';'])
+        .next()
+        .and_then(|t| t.parse().ok())
+        .expect("a number");
+    assert!(drift < 1e-12, "{summary}");
+}

@@ -68,6 +68,8 @@ pub struct DynamicStats {
     /// Of those, factorizations of an indefinite Jacobian (LBLᵀ fallback; full path only).
     pub indefinite_factorizations: usize,
     pub backtracks: usize,
+    /// Newton solves accepted at their round-off floor (`newton::FLOOR_FACTOR`).
+    pub newton_floor_stops: usize,
     pub stage_b_steps: usize,
     /// Largest final relative residual of a Newton solve.
     pub max_newton_residual: f64,
@@ -459,6 +461,7 @@ impl DynamicSolver {
                 iterations += s.iterations;
                 residual_norm = s.residual_norm;
                 stats.backtracks += s.backtracks;
+                stats.newton_floor_stops += usize::from(s.at_floor);
                 stats.max_newton_residual = stats.max_newton_residual.max(s.residual);
                 let Some(NormalTreatment::LimitedPenetration { stiffness, depth }) = treatment
                 else {

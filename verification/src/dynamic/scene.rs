@@ -297,8 +297,8 @@ fn summary_text(scene: &DynamicScene, source: &str, run: &RecordedRun, s: &Audit
         "{source}: {}; {} scheme, {} path, {} of {} steps (k = {:.4e}): E_0 = {:.6e}, E_N = {:.6e}, \
          (E + Φ)_N − (E + Φ)_0 = {:.4e}, external work {:.4e}{contact}; largest identity \
          drifts |R_n|/E_ref: (1.48) {:.2e}, (1.49) {:.2e}, HLT 3.7 {:.2e}; {iterations} Newton \
-         iterations (max {max_it} per step), {} backtracks, {} factorizations ({} of an indefinite \
-         Jacobian), loop {:.3} s",
+         iterations (max {max_it} per step, {} stopped at the residual's round-off floor), {} \
+         backtracks, {} factorizations ({} of an indefinite Jacobian), loop {:.3} s",
         scene.problem.body.describe(),
         scene.problem.scheme.name(),
         path,
@@ -312,6 +312,7 @@ fn summary_text(scene: &DynamicScene, source: &str, run: &RecordedRun, s: &Audit
         s.max_drift_1_48,
         s.max_drift_1_49,
         s.max_drift_3_7,
+        stats.newton_floor_stops,
         stats.backtracks,
         stats.factorizations,
         stats.indefinite_factorizations,
