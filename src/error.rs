@@ -131,6 +131,9 @@ pub enum SolveError {
         #[source]
         source: crate::solve::quadratic_eigen::QuadraticEigenError,
     },
+    /// The run was stopped from outside (Ctrl-C or a time limit; [`crate::run_control`]).
+    #[error("stopped at {at}: {reason}")]
+    Stopped { at: String, reason: String },
     /// A factorization met a zero, negative or non-finite pivot.
     #[error("singular or indefinite {operator}: pivot {pivot:e} at row {row}")]
     Singular {

@@ -84,6 +84,7 @@ pub mod field;
 pub mod material;
 pub mod mesh;
 pub mod model;
+pub mod run_control;
 pub mod scene;
 pub mod solve;
 pub mod time;

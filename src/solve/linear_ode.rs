@@ -155,6 +155,11 @@ pub fn integrate_second_order(
     let mut times = vec![0.0];
     let mut log_norms = vec![norm(&q, &v).ln()];
     for step in 1..=params.steps {
+        if step % 1024 == 0 {
+            crate::run_control::check(|| {
+                format!("step {step} of {} of the time integration", params.steps)
+            })?;
+        }
         rhs(&q, &v, &mut k1.0, &mut k1.1);
         for i in 0..n {
             tmp.0[i] = q[i] + 0.5 * k * k1.0[i];

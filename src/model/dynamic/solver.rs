@@ -367,6 +367,9 @@ impl DynamicSolver {
         let alpha = scheme.alpha(k);
         let load_varies = body.load_depends_on_time();
         for step in 1..=pb.steps {
+            crate::run_control::check(|| {
+                format!("step {step} of {} (t = {})", pb.steps, k * step as f64)
+            })?;
             let t = k * step as f64;
             let at = StepAt { step, time: t };
             // the step's load and constant data b

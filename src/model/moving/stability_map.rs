@@ -160,7 +160,7 @@ pub fn parallel_rows<T, W, E, Fw, Fr>(
 ) -> Result<(Vec<T>, usize), E>
 where
     T: Send,
-    E: Send,
+    E: Send + From<crate::error::SolveError>,
     Fw: Fn() -> W + Sync,
     Fr: Fn(usize, &mut W) -> Result<T, E> + Sync,
 {
@@ -176,6 +176,12 @@ where
                     loop {
                         let iy = next.fetch_add(1, Ordering::Relaxed);
                         if iy >= rows {
+                            break;
+                        }
+                        if let Err(e) = crate::run_control::check(|| {
+                            format!("row {} of {rows} of the parameter grid", iy + 1)
+                        }) {
+                            mine.push((iy, Err(e.into())));
                             break;
                         }
                         let r = row(iy, &mut ws);

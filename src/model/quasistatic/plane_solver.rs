@@ -316,6 +316,7 @@ impl PlaneSolver {
         for n in 1..=self.grid.steps() {
             let t_prev = self.grid.times()[n - 1];
             let t = self.grid.times()[n];
+            crate::run_control::check(|| format!("step {n} of {} (t = {t})", self.grid.steps()))?;
             let k = t - t_prev;
             let tau = self.scheme.data_time(t_prev, t);
             self.load(tau, &mut b_full, &mut work);

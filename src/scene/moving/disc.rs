@@ -151,7 +151,10 @@ impl DiscScene {
         let mut sweeps = Vec::new();
         for (param, values) in &self.sweeps {
             let mut points = Vec::new();
-            for &v in values {
+            for (i, &v) in values.iter().enumerate() {
+                crate::run_control::check(|| {
+                    format!("point {} of {} of the sweep", i + 1, values.len())
+                })?;
                 let mut p = self.particle;
                 param.set(&mut p, v);
                 points.push(point(&p)?);

@@ -76,6 +76,10 @@ enum Command {
         /// else half of the machine's memory).
         #[arg(long)]
         max_memory: Option<String>,
+        /// Stop the run after this many seconds (a typed error naming the step it reached; what
+        /// the solver computed until then is written where the model records it).
+        #[arg(long, value_name = "SECONDS")]
+        time_limit: Option<f64>,
     },
     /// Regenerate the README's numbers (its `<!-- generated: … -->` blocks) from reports/;
     /// with --check, exit 1 when they differ instead.
@@ -123,7 +127,21 @@ fn main() -> ExitCode {
             file,
             out,
             max_memory,
+            time_limit,
         }) => {
+            if let Some(seconds) = time_limit {
+                match std::time::Duration::try_from_secs_f64(*seconds) {
+                    Ok(d) => contactlab::run_control::set_time_limit(Some(d)),
+                    Err(_) => {
+                        eprintln!(
+                            "error: invalid --time-limit = {seconds}: expected a number of seconds ≥ 0"
+                        );
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            // Ctrl-C: the solver stops at its next step (the handler only sets a flag)
+            let _ = ctrlc::set_handler(contactlab::run_control::interrupt);
             if let Some(text) = max_memory {
                 match contactlab::scene::memory::parse_size(text) {
                     Some(bytes) => contactlab::scene::memory::set_memory_limit(bytes),

@@ -71,6 +71,16 @@ pub fn run_guarded(solver: &DynamicSolver, snapshot_times: &[f64]) -> Result<Rec
     })
 }
 
+/// A number as JSON, or its text when it is not finite (JSON has no NaN or ∞; serde would write
+/// null, which reads as "absent").
+fn finite_or_text(x: f64) -> serde_json::Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        json!(x.to_string())
+    }
+}
+
 /// The typed error as JSON: its message and its data.
 pub fn error_json(e: &LabError) -> serde_json::Value {
     match e {
@@ -82,7 +92,8 @@ pub fn error_json(e: &LabError) -> serde_json::Value {
             tolerance,
         }) => json!({
             "message": e.to_string(), "kind": "newton_not_converged", "step": step, "time": time,
-            "iterations": iterations, "residual": residual, "tolerance": tolerance,
+            "iterations": iterations, "residual": finite_or_text(*residual),
+            "tolerance": finite_or_text(*tolerance),
         }),
         LabError::Solve(SolveError::NonFinite {
             step,
@@ -105,6 +116,9 @@ pub fn error_json(e: &LabError) -> serde_json::Value {
         }) => json!({
             "message": e.to_string(), "kind": "singular", "operator": operator, "row": row,
             "pivot": pivot.to_string(),
+        }),
+        LabError::Solve(SolveError::Stopped { at, reason }) => json!({
+            "message": e.to_string(), "kind": "stopped", "at": at, "reason": reason,
         }),
         LabError::Solve(SolveError::Eigenproblem { at, .. }) => json!({
             "message": e.to_string(), "kind": "eigenproblem", "at": at,
