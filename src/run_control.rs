@@ -6,9 +6,12 @@
 //! [`SolveError::Stopped`] with where it was, and the caller writes what it has computed (the
 //! dynamic audit, the rod and plane observers' records).
 //!
-//! The state is global to the process (one user, one run); [`reset`] clears it. The verification
-//! harness never sets it, so a case cannot be stopped by another case.
+//! The interrupt and [`set_time_limit`] are global to the process (one user, one run); [`reset`]
+//! clears them. [`with_time_limit`] bounds only the calling thread (and the threads a solver
+//! spawns from it, which inherit the deadline): the fuzz campaign bounds each of its scenes so,
+//! while other work goes on.
 
+use std::cell::Cell;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
@@ -20,6 +23,35 @@ static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 static DEADLINE: AtomicU64 = AtomicU64::new(u64::MAX);
 /// The time limit in milliseconds, for the message.
 static LIMIT_MS: AtomicU64 = AtomicU64::new(0);
+
+thread_local! {
+    /// This thread's own deadline and its time limit (for the message).
+    static LOCAL: Cell<Option<(Instant, Duration)>> = const { Cell::new(None) };
+}
+
+/// The calling thread's own deadline (for a solver that spawns threads: pass it to
+/// [`with_deadline`] in each).
+pub fn current_deadline() -> Option<(Instant, Duration)> {
+    LOCAL.with(Cell::get)
+}
+
+/// Runs `f` with `deadline` as the calling thread's own deadline, then restores the previous one.
+pub fn with_deadline<R>(deadline: Option<(Instant, Duration)>, f: impl FnOnce() -> R) -> R {
+    let previous = LOCAL.with(|c| c.replace(deadline));
+    struct Restore(Option<(Instant, Duration)>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            LOCAL.with(|c| c.set(self.0));
+        }
+    }
+    let _restore = Restore(previous);
+    f()
+}
+
+/// Runs `f` with a time limit from now on the calling thread only.
+pub fn with_time_limit<R>(limit: Duration, f: impl FnOnce() -> R) -> R {
+    with_deadline(Some((Instant::now() + limit, limit)), f)
+}
 
 fn origin() -> Instant {
     static ORIGIN: OnceLock<Instant> = OnceLock::new();
@@ -72,6 +104,14 @@ pub fn stop_reason() -> Option<String> {
             ));
         }
     }
+    if let Some((deadline, limit)) = current_deadline() {
+        if Instant::now() >= deadline {
+            return Some(format!(
+                "the time limit of {} s was reached",
+                limit.as_secs_f64()
+            ));
+        }
+    }
     None
 }
 
@@ -112,5 +152,17 @@ mod tests {
         ));
         reset();
         assert!(check(|| "c".into()).is_ok());
+        // a thread's own limit: only inside the closure, and inherited explicitly
+        let stopped = with_time_limit(Duration::ZERO, || {
+            let inherited = current_deadline();
+            let other =
+                std::thread::spawn(move || with_deadline(inherited, || check(|| "d".into())));
+            (
+                check(|| "e".into()).is_err(),
+                other.join().map(|r| r.is_err()).unwrap_or(false),
+            )
+        });
+        assert_eq!(stopped, (true, true));
+        assert!(check(|| "f".into()).is_ok());
     }
 }

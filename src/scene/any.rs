@@ -61,6 +61,7 @@ impl Scene {
     /// Parses and validates a scene from TOML text; `source_name` (a file name) labels errors.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, Error> {
         let table: toml::Table = text.parse().map_err(|e| scene_error(source_name, e))?;
+        check_magnitudes(&toml::Value::Table(table.clone()), &mut String::new())?;
         Self::from_table(table, source_name)
     }
 
@@ -190,6 +191,57 @@ impl Solution {
                 r.point.assessment.verdict, r.point.assessment.max_real_part
             ),
         }
+    }
+}
+
+/// The largest magnitude a number of a scene file may have, and (besides 0) the smallest.
+///
+/// A scene's numbers meet in products — moduli times lengths, loads times lengths squared over
+/// moduli, masses times speeds squared — and a product of three factors beyond 1e150 (or below
+/// 1e-150) leaves the double range, so the run would fill with ∞ or 0 long after the input was
+/// read. Such inputs are refused up front, the key named; the solvers still stop at the first
+/// non-finite value of what a scene within these bounds computes.
+pub const MAX_MAGNITUDE: f64 = 1e150;
+
+/// Every float of a scene file is finite and, unless 0, of magnitude within
+/// [1/[`MAX_MAGNITUDE`], [`MAX_MAGNITUDE`]]; `path` is the key as written (`body.density`).
+fn check_magnitudes(v: &toml::Value, path: &mut String) -> Result<(), Error> {
+    match v {
+        toml::Value::Float(x) => {
+            let m = x.abs();
+            if !x.is_finite() || m > MAX_MAGNITUDE || (m > 0.0 && m < 1.0 / MAX_MAGNITUDE) {
+                return Err(InputError::new(
+                    path.as_str(),
+                    x,
+                    "a finite number of magnitude between 1e-150 and 1e150 (or 0): beyond, the \
+                     products of moduli, lengths and loads leave the range of doubles",
+                )
+                .into());
+            }
+            Ok(())
+        }
+        toml::Value::Table(t) => {
+            for (k, x) in t {
+                let len = path.len();
+                if !path.is_empty() {
+                    path.push('.');
+                }
+                path.push_str(k);
+                check_magnitudes(x, path)?;
+                path.truncate(len);
+            }
+            Ok(())
+        }
+        toml::Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                let len = path.len();
+                path.push_str(&format!("[{i}]"));
+                check_magnitudes(x, path)?;
+                path.truncate(len);
+            }
+            Ok(())
+        }
+        _ => Ok(()),
     }
 }
 

@@ -21,5 +21,6 @@ pub mod moving;
 pub mod plane;
 pub mod plot;
 pub mod registry;
+pub mod robustness;
 pub mod rod;
 pub mod stats;

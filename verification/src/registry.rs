@@ -20,11 +20,12 @@ pub const FAMILIES: [&dyn Family; 4] = [
     &crate::moving::Moving,
 ];
 
-/// Every case kind, in family order.
+/// Every case kind, in family order, then the fuzz campaign's.
 pub fn kinds() -> Vec<&'static str> {
     FAMILIES
         .iter()
         .flat_map(|f| f.kinds().iter().copied())
+        .chain(crate::robustness::KINDS)
         .collect()
 }
 
@@ -35,6 +36,10 @@ pub fn family_of(kind: &str) -> Option<&'static dyn Family> {
 
 /// Checks a case with its kind's format.
 pub fn check(case: &Case) -> Result<(), CaseError> {
+    if crate::robustness::KINDS.contains(&case.header.kind.as_str()) {
+        let c: crate::robustness::FuzzCase = case.body()?;
+        return c.check(case.path());
+    }
     match family_of(&case.header.kind) {
         Some(f) => f.check(case),
         None => Err(case.unknown_kind(&kinds())),
@@ -62,8 +67,15 @@ pub fn load_all(dir: &Path) -> Result<Vec<Case>, CaseError> {
 pub fn run(case: &Case, ctx: &RunContext) -> CaseReport {
     let start = Instant::now();
     let mut report = CaseReport::new(&case.header, ctx.metadata.clone());
+    let fuzz = crate::robustness::KINDS.contains(&case.header.kind.as_str());
     let outcome = match family_of(&case.header.kind) {
         Some(f) => f.run(case, ctx, &mut report),
+        // the campaign runs scenes through `verify scene`'s runner, passed in (it imports no
+        // family)
+        None if fuzz => case
+            .body::<crate::robustness::FuzzCase>()
+            .map_err(|e| e.to_string())
+            .and_then(|c| crate::robustness::run(case, &c, run_scene, &mut report)),
         None => Err(format!(
             "no family owns the case kind `{}`",
             case.header.kind

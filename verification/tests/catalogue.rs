@@ -23,6 +23,9 @@ fn every_case_parses_with_an_explanation_and_a_family() {
             "{}: explain the expected numbers",
             c.header.id
         );
+        if contactlab_verify::robustness::KINDS.contains(&c.header.kind.as_str()) {
+            continue; // the fuzz campaign runs every family's scenes: no family owns it
+        }
         let family = registry::family_of(&c.header.kind).expect("a family owns the kind");
         assert!(
             c.header.kind.starts_with(family.name()),

@@ -298,6 +298,13 @@ pub fn solve_stage(
     let mut previous_norm = f64::INFINITY;
     let mut stagnant = 0usize;
     loop {
+        // a large body's iterations and backtracks can take long: a stop request ends them
+        crate::run_control::check(|| {
+            format!(
+                "step {} (t = {}), Newton iteration {iteration}",
+                at.step, at.time
+            )
+        })?;
         // 1. the residual with the current sets
         let body_scale = op.body_residual(d, &mut ws.r);
         let Some(body_scale) = body_scale else {

@@ -58,6 +58,7 @@ pub struct DynamicParams {
 /// Statistics of a run.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct DynamicStats {
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub path: Option<DynamicPath>,
     pub steps: usize,
     pub unknowns: usize,

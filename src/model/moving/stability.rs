@@ -120,10 +120,15 @@ pub struct StabilityAssessment {
     /// ρ = max |λ|.
     pub spectral_scale: f64,
     /// The resolution limit ω_res: the verdict reads the eigenvalues with |Im λ| ≤ ω_res
-    /// (infinite: every eigenvalue).
+    /// (infinite: every eigenvalue; then absent from the JSON, which has no ∞).
+    #[serde(skip_serializing_if = "is_infinite")]
     pub resolution_limit: f64,
     /// The discretization warning: the unstable eigenvalues (Re λ > τ) above ω_res.
     pub unresolved: UnresolvedInstability,
+}
+
+fn is_infinite(x: &f64) -> bool {
+    x.is_infinite()
 }
 
 /// Unstable eigenvalues above the resolution limit: the basis's, not the continuum's.

@@ -167,31 +167,35 @@ where
     let threads = resolve_threads(threads, rows);
     let next = AtomicUsize::new(0);
     let mut done: Vec<(usize, Result<T, E>)> = Vec::with_capacity(rows);
+    // the caller's own time limit holds in the workers too
+    let deadline = crate::run_control::current_deadline();
     std::thread::scope(|scope| {
         let handles: Vec<_> = (0..threads)
             .map(|_| {
                 scope.spawn(|| {
-                    let mut ws = workspace();
-                    let mut mine = Vec::new();
-                    loop {
-                        let iy = next.fetch_add(1, Ordering::Relaxed);
-                        if iy >= rows {
-                            break;
+                    crate::run_control::with_deadline(deadline, || {
+                        let mut ws = workspace();
+                        let mut mine = Vec::new();
+                        loop {
+                            let iy = next.fetch_add(1, Ordering::Relaxed);
+                            if iy >= rows {
+                                break;
+                            }
+                            if let Err(e) = crate::run_control::check(|| {
+                                format!("row {} of {rows} of the parameter grid", iy + 1)
+                            }) {
+                                mine.push((iy, Err(e.into())));
+                                break;
+                            }
+                            let r = row(iy, &mut ws);
+                            let failed = r.is_err();
+                            mine.push((iy, r));
+                            if failed {
+                                break;
+                            }
                         }
-                        if let Err(e) = crate::run_control::check(|| {
-                            format!("row {} of {rows} of the parameter grid", iy + 1)
-                        }) {
-                            mine.push((iy, Err(e.into())));
-                            break;
-                        }
-                        let r = row(iy, &mut ws);
-                        let failed = r.is_err();
-                        mine.push((iy, r));
-                        if failed {
-                            break;
-                        }
-                    }
-                    mine
+                        mine
+                    })
                 })
             })
             .collect();

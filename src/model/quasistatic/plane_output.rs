@@ -27,6 +27,7 @@ pub struct PlaneSnapshot {
     /// u at the nodes, interleaved (u_x, u_y).
     pub u: Vec<f64>,
     /// w at the nodes (absent at n = 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub w: Option<Vec<f64>>,
     /// σ = A ε(w) + B ε(u) per triangle (σ11, σ22, σ12) (B ε(u) alone at n = 0).
     pub stress: Vec<[f64; 3]>,

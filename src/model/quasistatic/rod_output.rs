@@ -29,8 +29,10 @@ pub struct RodSnapshot {
     /// u_n at the nodes.
     pub u: Vec<f64>,
     /// w_n at the nodes (absent at n = 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub w: Option<Vec<f64>>,
     /// The post-processed velocity v_n at the nodes, where computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub v: Option<Vec<f64>>,
 }
 

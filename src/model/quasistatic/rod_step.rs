@@ -20,6 +20,7 @@ pub struct RodStats {
     /// How the load enters each step: `static`, `time_scaled` or `space_time`.
     pub load_path: String,
     /// The explicit scheme's step bound 2a/b, if the scheme is explicit.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub explicit_stability_bound: Option<f64>,
     /// Steps with k_n ≥ 2a/b (explicit scheme only).
     pub steps_above_stability_bound: usize,

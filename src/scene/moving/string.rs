@@ -378,10 +378,12 @@ pub struct StringSceneResult {
     /// [Re λ, Im λ].
     pub eigenvalues: Vec<[f64; 2]>,
     /// Per eigenvalue, the eigenvector x as [Re, Im] per coordinate.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub eigenvectors: Option<Vec<Vec<[f64; 2]>>>,
     pub assessment: StabilityAssessment,
     pub stats: crate::solve::quadratic_eigen::QuadraticEigenStats,
     pub sweeps: Vec<Sweep>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub map: Option<StabilityMap>,
 }
 

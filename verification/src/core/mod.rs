@@ -8,6 +8,7 @@ pub mod convergence;
 pub mod cpu_clock;
 pub mod format;
 pub mod gate;
+pub mod json_out;
 pub mod overrides;
 pub mod report;
 pub mod study;

@@ -135,6 +135,7 @@ struct AuditFile<'a> {
     title: &'a str,
     /// `completed` or `failed`.
     status: &'a str,
+    #[serde(skip_serializing_if = "Option::is_none")]
     error: Option<serde_json::Value>,
     /// Steps completed (records − 1) of the steps asked for.
     steps_completed: usize,
@@ -210,7 +211,8 @@ pub fn write_scene(scene: &DynamicScene, source: &str, out: &Path) -> Result<Str
     };
     write(
         "energy_audit.json",
-        serde_json::to_string_pretty(&audit_file).map_err(|e| e.to_string())?,
+        crate::core::json_out::finite_json(&audit_file, true)
+            .map_err(|e| format!("{source}: energy_audit.json: {e}"))?,
     )?;
     let body = &scene.problem.body;
     let nodal = |u: &[f64]| -> Vec<f64> {
@@ -266,7 +268,8 @@ pub fn write_scene(scene: &DynamicScene, source: &str, out: &Path) -> Result<Str
     };
     write(
         "solution.json",
-        serde_json::to_string_pretty(&solution).map_err(|e| e.to_string())?,
+        crate::core::json_out::finite_json(&solution, true)
+            .map_err(|e| format!("{source}: solution.json: {e}"))?,
     )?;
     write_plots(scene, &title, &run, snapshots, out)?;
     let text = summary_text(scene, source, &run, &summary);

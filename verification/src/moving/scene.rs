@@ -61,16 +61,19 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
             };
             write(
                 "eigenvalues.json",
-                serde_json::to_string_pretty(&PointJson {
-                    title: &title,
-                    coordinates: &r.coordinates,
-                    control_parameter: r.control_parameter,
-                    eigenvalues: &r.eigenvalues,
-                    eigenvectors: r.eigenvectors.as_ref(),
-                    assessment: &r.assessment,
-                    stats: &r.stats,
-                })
-                .map_err(|e| e.to_string())?,
+                crate::core::json_out::finite_json(
+                    &PointJson {
+                        title: &title,
+                        coordinates: &r.coordinates,
+                        control_parameter: r.control_parameter,
+                        eigenvalues: &r.eigenvalues,
+                        eigenvectors: r.eigenvectors.as_ref(),
+                        assessment: &r.assessment,
+                        stats: &r.stats,
+                    },
+                    true,
+                )
+                .map_err(|e| format!("{source}: eigenvalues.json: {e}"))?,
             )?;
             svg("spectrum.svg", &spectrum_figure(&title, &r))?;
             for (i, sw) in r.sweeps.iter().enumerate() {
@@ -93,7 +96,8 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
                 };
                 write(
                     &format!("sweep_{i}.json"),
-                    serde_json::to_string_pretty(&j).map_err(|e| e.to_string())?,
+                    crate::core::json_out::finite_json(&j, true)
+                        .map_err(|e| format!("{source}: sweep_{i}.json: {e}"))?,
                 )?;
                 let chosen = upper_branches(&sw.branches, 8);
                 let sym = sw.axis.parameter.symbol();
@@ -105,7 +109,8 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
             if let Some(map) = &r.map {
                 write(
                     "map.json",
-                    serde_json::to_string(&map_json(map)).map_err(|e| e.to_string())?,
+                    crate::core::json_out::finite_json(&map_json(map), false)
+                        .map_err(|e| format!("{source}: map.json: {e}"))?,
                 )?;
                 svg(
                     "map.svg",
@@ -143,7 +148,8 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
             let r = d.run().map_err(|e| format!("{source}: {e}"))?;
             write(
                 "eigenvalues.json",
-                serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?,
+                crate::core::json_out::finite_json(&r, true)
+                    .map_err(|e| format!("{source}: eigenvalues.json: {e}"))?,
             )?;
             for (i, sw) in r.sweeps.iter().enumerate() {
                 let f = Figure::new(format!(

@@ -105,7 +105,8 @@ pub fn write_scene(scene: &PlaneScene, source: &str, out: &Path) -> Result<Strin
     let path = out.join("solution.json");
     std::fs::write(
         &path,
-        serde_json::to_string_pretty(&sol).map_err(|e| e.to_string())?,
+        crate::core::json_out::finite_json(&sol, true)
+            .map_err(|e| format!("{source}: solution.json: {e}"))?,
     )
     .map_err(|e| format!("{}: {e}", path.display()))?;
     let title = if scene.title.is_empty() {

@@ -79,7 +79,8 @@ pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String,
     };
     write(
         "solution.json",
-        serde_json::to_string_pretty(&solution).map_err(|e| e.to_string())?,
+        crate::core::json_out::finite_json(&solution, true)
+            .map_err(|e| format!("{source}: solution.json: {e}"))?,
     )?;
     let mut summary = format!(
         "{source}: {} scheme, M = {}, N = {}: u_h(L, T) = {:.12e}, {} Newton iterations (max {} per step), {} steps with the damper active",
@@ -104,7 +105,8 @@ pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String,
         ));
         write(
             "errors.json",
-            serde_json::to_string_pretty(&errs).map_err(|e| e.to_string())?,
+            crate::core::json_out::finite_json(&errs, true)
+                .map_err(|e| format!("{source}: errors.json: {e}"))?,
         )?;
     }
     let title = if scene.title.is_empty() {

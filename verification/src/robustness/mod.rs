@@ -1,0 +1,517 @@
+//! The fuzz campaign (`kind = "robustness_fuzz"`): scenes mutated from the examples the way a
+//! careless or hostile user would ([`mutation`]) run through `verify scene`, each bounded in
+//! time (a thread-local time limit, [`contactlab::run_control::with_time_limit`]) and memory (the
+//! scene's own estimate against a limit), each outcome classified:
+//!
+//! - `ran`: a solution, every written JSON number finite (no `null` where a number belongs) and
+//!   no NaN or ∞ in a plot;
+//! - `error`: a typed error (the message is kept; whether it names the mutated key is counted);
+//! - `stopped`: the time limit stopped the run at a step it names (a long scene, not a hang);
+//! - `panic`, `hang` (no answer within the limit plus a grace period) and `non_finite` (a number
+//!   that is not finite in a written output): defects, gated at zero.
+//!
+//! An allocation the estimates miss aborts the process: the campaign then does not finish, which
+//! fails the run as surely as a gate.
+//!
+//! Imports: core and the scene runner passed in by the registry (no family).
+
+pub mod mutation;
+pub mod outputs;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::mpsc;
+use std::time::Duration;
+
+use serde::Deserialize;
+
+use crate::core::case::Case;
+use crate::core::format::{invalid, positive, CaseError};
+use crate::core::gate::{Check, GateVerdict};
+use crate::core::report::case_report::{CaseReport, Table};
+use mutation::{get_mut, mutate, parse_path, Rng};
+
+/// The case kinds of the campaign.
+pub const KINDS: [&str; 1] = ["robustness_fuzz"];
+
+/// `verify scene`'s runner: the scene file and the output directory, to a summary or an error.
+pub type SceneRunner = fn(&Path, &Path) -> Result<String, String>;
+
+/// A base scene: an example, shrunk by `set` so that one run costs milliseconds.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Base {
+    /// The model group it counts under (`rod`, `plane`, `dynamic`, `moving`).
+    pub model: String,
+    /// The example scene, relative to the case file.
+    pub scene: PathBuf,
+    /// Values replaced before mutating (`"time.steps" = 20`, `"sweep[0].points" = 5`).
+    #[serde(default)]
+    pub set: toml::Table,
+}
+
+/// The campaign's format.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FuzzCase {
+    /// The campaign's seed: scene i of base b is reproduced from (seed, b, i).
+    pub seed: u64,
+    /// Mutated scenes per model group (split evenly over its bases).
+    pub scenes_per_model: usize,
+    /// Each scene's own time limit (s).
+    pub time_limit: f64,
+    /// Beyond the time limit, how long a scene may take to answer before it counts as a hang (s).
+    pub hang_grace: f64,
+    /// The memory a scene may claim (bytes, with K, M, G).
+    pub max_memory: String,
+    /// Scenes run at once.
+    #[serde(default = "default_lanes")]
+    pub lanes: usize,
+    pub base: Vec<Base>,
+}
+
+fn default_lanes() -> usize {
+    2
+}
+
+impl FuzzCase {
+    pub fn check(&self, path: &Path) -> Result<(), CaseError> {
+        positive(path, "time_limit", self.time_limit)?;
+        positive(path, "hang_grace", self.hang_grace)?;
+        if contactlab::scene::memory::parse_size(&self.max_memory).is_none() {
+            return Err(invalid(
+                path,
+                "max_memory",
+                &self.max_memory,
+                "a size such as 1G",
+            ));
+        }
+        if self.scenes_per_model == 0 || self.base.is_empty() || self.lanes == 0 {
+            return Err(invalid(
+                path,
+                "scenes_per_model / base / lanes",
+                self.scenes_per_model,
+                "at least one scene, one base and one lane",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Scenes of each base shown in the examples table.
+const EXAMPLES_PER_BASE: usize = 2;
+
+/// The outcome of one scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Outcome {
+    Ran,
+    Error,
+    Stopped,
+    Panic,
+    Hang,
+    NonFinite,
+}
+
+impl Outcome {
+    const ALL: [Outcome; 6] = [
+        Outcome::Ran,
+        Outcome::Error,
+        Outcome::Stopped,
+        Outcome::Panic,
+        Outcome::Hang,
+        Outcome::NonFinite,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Outcome::Ran => "ran",
+            Outcome::Error => "error",
+            Outcome::Stopped => "stopped",
+            Outcome::Panic => "panic",
+            Outcome::Hang => "hang",
+            Outcome::NonFinite => "non_finite",
+        }
+    }
+
+    fn is_defect(self) -> bool {
+        matches!(self, Outcome::Panic | Outcome::Hang | Outcome::NonFinite)
+    }
+}
+
+/// One scene's result.
+#[derive(Debug, Clone)]
+struct SceneResult {
+    model: String,
+    base: usize,
+    index: usize,
+    mutations: String,
+    /// The mutated keys' last components (what an error should name).
+    keys: Vec<String>,
+    outcome: Outcome,
+    message: String,
+}
+
+/// A scene of the campaign: the base with its shrink values, mutated.
+fn scene_text(
+    base: &toml::Table,
+    seed: u64,
+    b: usize,
+    index: usize,
+) -> (String, Vec<String>, String) {
+    let mut doc = toml::Value::Table(base.clone());
+    let mut rng = Rng::for_scene(seed, b, index);
+    let mutations = mutate(&mut doc, &mut rng);
+    let keys = mutations
+        .iter()
+        .map(|m| {
+            m.key
+                .rsplit('.')
+                .next()
+                .unwrap_or(&m.key)
+                .split('[')
+                .next()
+                .unwrap_or("")
+                .to_string()
+        })
+        .collect();
+    let what = mutations
+        .iter()
+        .map(|m| m.describe())
+        .collect::<Vec<_>>()
+        .join("; ");
+    let text = match &doc {
+        toml::Value::Table(t) => toml::to_string(t).unwrap_or_default(),
+        _ => String::new(),
+    };
+    (text, keys, what)
+}
+
+/// The base scene with its shrink values applied.
+fn shrunk(case_dir: &Path, base: &Base) -> Result<toml::Table, String> {
+    let path = case_dir.join(&base.scene);
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut doc = toml::Value::Table(
+        text.parse::<toml::Table>()
+            .map_err(|e| format!("{}: {e}", path.display()))?,
+    );
+    for (key, value) in &base.set {
+        let steps = parse_path(key);
+        let slot = get_mut(&mut doc, &steps)
+            .ok_or_else(|| format!("{}: set.{key}: no such key in the scene", path.display()))?;
+        *slot = value.clone();
+    }
+    match doc {
+        toml::Value::Table(t) => Ok(t),
+        _ => Err(format!("{}: not a table", path.display())),
+    }
+}
+
+/// Runs one scene in its own thread with its time limit; `None` when it did not answer in time.
+fn run_one(
+    runner: SceneRunner,
+    dir: &Path,
+    text: String,
+    limit: Duration,
+    grace: Duration,
+) -> Option<(Result<String, String>, bool)> {
+    let _ = std::fs::remove_dir_all(dir);
+    if std::fs::create_dir_all(dir).is_err() {
+        return Some((Err("cannot create the scene directory".into()), false));
+    }
+    let file = dir.join("scene.toml");
+    if std::fs::write(&file, text).is_err() {
+        return Some((Err("cannot write the scene".into()), false));
+    }
+    let out = dir.join("out");
+    let (tx, rx) = mpsc::channel();
+    let spawned = std::thread::Builder::new().spawn(move || {
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            contactlab::run_control::with_time_limit(limit, || runner(&file, &out))
+        }));
+        let _ = tx.send(match result {
+            Ok(r) => (r, false),
+            Err(p) => (
+                Err(p
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default()),
+                true,
+            ),
+        });
+    });
+    if spawned.is_err() {
+        return Some((Err("cannot spawn a thread".into()), false));
+    }
+    rx.recv_timeout(limit + grace).ok()
+}
+
+/// Runs the campaign and fills the report.
+pub fn run(
+    case: &Case,
+    c: &FuzzCase,
+    runner: SceneRunner,
+    report: &mut CaseReport,
+) -> Result<(), String> {
+    let case_dir = case
+        .path()
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let bases: Vec<toml::Table> = c
+        .base
+        .iter()
+        .map(|b| shrunk(&case_dir, b))
+        .collect::<Result<_, _>>()?;
+    // scenes per base: the model's share split evenly over its bases
+    let mut per_model: BTreeMap<&str, usize> = BTreeMap::new();
+    for b in &c.base {
+        *per_model.entry(b.model.as_str()).or_default() += 1;
+    }
+    let mut work: Vec<(usize, usize)> = Vec::new();
+    for (bi, b) in c.base.iter().enumerate() {
+        let n_bases = per_model[b.model.as_str()];
+        let share = c.scenes_per_model.div_ceil(n_bases);
+        work.extend((0..share).map(|i| (bi, i)));
+    }
+    let limit = Duration::from_secs_f64(c.time_limit);
+    let grace = Duration::from_secs_f64(c.hang_grace);
+    let bytes = contactlab::scene::memory::parse_size(&c.max_memory).unwrap_or(1 << 30);
+    let previous_limit = match contactlab::scene::memory::memory_limit() {
+        (b, "--max-memory") => b,
+        _ => 0,
+    };
+    contactlab::scene::memory::set_memory_limit(bytes);
+    let root = std::env::temp_dir().join(format!("contactlab-fuzz-{}", std::process::id()));
+    // every base must run as it is: a base that fails would make its mutations say little
+    let mut base_rows = Vec::new();
+    let mut base_checks = Vec::new();
+    for (b, table) in c.base.iter().zip(&bases) {
+        let text = toml::to_string(table).unwrap_or_default();
+        let answer = run_one(runner, &root.join("base"), text, limit, grace);
+        let (ran, message) = match answer {
+            Some((Ok(summary), false)) => match outputs::first_non_finite(&root.join("base/out")) {
+                None => (true, summary),
+                Some(w) => (false, w),
+            },
+            Some((Err(e), _)) => (false, e),
+            Some((Ok(_), true)) => (false, "panicked".into()),
+            None => (false, "no answer".into()),
+        };
+        base_checks.push(Check::holds(
+            &format!("{} runs unmutated", b.scene.display()),
+            ran,
+            "a solution with finite outputs",
+        ));
+        if !ran {
+            base_rows.push(vec![b.scene.display().to_string(), message]);
+        }
+    }
+    report.gates.push(GateVerdict::from_checks(
+        "fuzz: every base scene runs unmutated".into(),
+        "extreme",
+        base_checks,
+        "the bases are the examples with their sizes shrunk (`set`)",
+    ));
+    if !base_rows.is_empty() {
+        report.tables.push(Table {
+            title: "base scenes that do not run".into(),
+            header: vec!["base".into(), "message".into()],
+            rows: base_rows,
+        });
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let mut results: Vec<SceneResult> = Vec::with_capacity(work.len());
+    std::thread::scope(|scope| {
+        let lanes: Vec<_> = (0..c.lanes)
+            .map(|lane| {
+                let (work, bases, next, root) = (&work, &bases, &next, &root);
+                scope.spawn(move || {
+                    let mut dir = root.join(format!("lane-{lane}"));
+                    let mut hangs = 0usize;
+                    let mut mine = Vec::new();
+                    loop {
+                        let w = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some(&(b, index)) = work.get(w) else {
+                            break;
+                        };
+                        let (text, keys, mutations) = scene_text(&bases[b], c.seed, b, index);
+                        let answer = run_one(runner, &dir, text, limit, grace);
+                        let (outcome, message) = match answer {
+                            None => (Outcome::Hang, String::new()),
+                            Some((Err(p), true)) => (Outcome::Panic, p),
+                            Some((Ok(_), true)) => (Outcome::Panic, String::new()),
+                            Some((Ok(summary), false)) => {
+                                match outputs::first_non_finite(&dir.join("out")) {
+                                    Some(where_) => (Outcome::NonFinite, where_),
+                                    None => (Outcome::Ran, summary),
+                                }
+                            }
+                            Some((Err(e), false)) => {
+                                if e.contains("the time limit of") {
+                                    (Outcome::Stopped, e)
+                                } else {
+                                    (Outcome::Error, e)
+                                }
+                            }
+                        };
+                        mine.push((
+                            w,
+                            SceneResult {
+                                model: c.base[b].model.clone(),
+                                base: b,
+                                index,
+                                mutations,
+                                keys,
+                                outcome,
+                                message,
+                            },
+                        ));
+                        if outcome == Outcome::Hang {
+                            // the hung thread keeps its directory; the lane moves to a new one
+                            hangs += 1;
+                            dir = root.join(format!("lane-{lane}-{hangs}"));
+                        }
+                    }
+                    mine
+                })
+            })
+            .collect();
+        let mut all = Vec::new();
+        for l in lanes {
+            if let Ok(mine) = l.join() {
+                all.extend(mine);
+            }
+        }
+        all.sort_by_key(|(w, _)| *w);
+        results = all.into_iter().map(|(_, r)| r).collect();
+    });
+    contactlab::scene::memory::set_memory_limit(previous_limit);
+    let _ = std::fs::remove_dir_all(&root);
+    summarize(c, &results, work.len(), report);
+    Ok(())
+}
+
+/// Counts per model and outcome, the gates, and the examples.
+fn summarize(c: &FuzzCase, results: &[SceneResult], planned: usize, report: &mut CaseReport) {
+    let mut counts: BTreeMap<(String, Outcome), usize> = BTreeMap::new();
+    let mut naming: BTreeMap<String, (usize, usize)> = BTreeMap::new();
+    for r in results {
+        *counts.entry((r.model.clone(), r.outcome)).or_default() += 1;
+        if r.outcome == Outcome::Error {
+            let e = naming.entry(r.model.clone()).or_default();
+            e.0 += 1;
+            if r.keys
+                .iter()
+                .any(|k| !k.is_empty() && r.message.contains(k.as_str()))
+            {
+                e.1 += 1;
+            }
+        }
+    }
+    let models: Vec<String> = {
+        let mut m: Vec<String> = c.base.iter().map(|b| b.model.clone()).collect();
+        m.dedup();
+        m.sort();
+        m.dedup();
+        m
+    };
+    let mut rows = Vec::new();
+    let mut checks = Vec::new();
+    for m in &models {
+        let count = |o: Outcome| counts.get(&(m.clone(), o)).copied().unwrap_or(0);
+        let total: usize = Outcome::ALL.iter().map(|&o| count(o)).sum();
+        let (errors, named) = naming.get(m).copied().unwrap_or((0, 0));
+        let mut row = vec![m.clone(), total.to_string()];
+        row.extend(Outcome::ALL.iter().map(|&o| count(o).to_string()));
+        row.push(format!("{named} of {errors}"));
+        rows.push(row);
+        checks.push(Check::at_least(
+            &format!("{m}: scenes answered"),
+            total as f64,
+            c.scenes_per_model as f64,
+        ));
+        for o in Outcome::ALL.into_iter().filter(|o| o.is_defect()) {
+            checks.push(Check::at_most(
+                &format!("{m}: {} outcomes", o.name()),
+                count(o) as f64,
+                0.0,
+            ));
+        }
+    }
+    checks.push(Check::at_least(
+        "every planned scene answered or was named as a hang",
+        results.len() as f64,
+        planned as f64,
+    ));
+    report.gates.push(GateVerdict::from_checks(
+        format!(
+            "fuzz: {} mutated scenes, no panic, hang or non-finite output",
+            results.len()
+        ),
+        "extreme",
+        checks,
+        "each scene bounded by its own time limit (a stop naming its step is an answer); a \
+         defect is any panic, any scene silent beyond the limit plus the grace, and any written \
+         number that is not finite",
+    ));
+    // which of ran / error / stopped a long scene ends in depends on the machine's speed against
+    // the time limit: those columns are timing-dependent (kept out of the deterministic report);
+    // the defect columns are gated at zero
+    let mut header: Vec<String> = vec!["model".into(), "scenes".into()];
+    header.extend(Outcome::ALL.iter().map(|o| {
+        if o.is_defect() {
+            o.name().to_string()
+        } else {
+            format!("{} (timing: vs the limit)", o.name())
+        }
+    }));
+    header.push("errors naming the mutated key (timing: vs the limit)".into());
+    report.tables.push(Table {
+        title: format!(
+            "fuzz campaign (seed {}, time limit {} s per scene, memory limit {}): outcomes per model",
+            c.seed, c.time_limit, c.max_memory
+        ),
+        header,
+        rows,
+    });
+    // examples: the first scenes of every base, and every defect
+    let mut rows = Vec::new();
+    for r in results {
+        if r.index >= EXAMPLES_PER_BASE && !r.outcome.is_defect() {
+            continue;
+        }
+        let mut message = r.message.clone();
+        if message.len() > 300 {
+            let cut = (0..=300)
+                .rev()
+                .find(|&i| message.is_char_boundary(i))
+                .unwrap_or(0);
+            message.truncate(cut);
+            message.push('…');
+        }
+        rows.push(vec![
+            r.model.clone(),
+            format!("{}/{}/{}", c.seed, r.base, r.index),
+            c.base[r.base].scene.display().to_string(),
+            r.mutations.clone(),
+            r.outcome.name().into(),
+            message,
+        ]);
+    }
+    report.tables.push(Table {
+        title: "examples (reproduce with seed/base/index)".into(),
+        header: [
+            "model",
+            "seed/base/index",
+            "base scene",
+            "mutations",
+            "outcome (timing: vs the limit)",
+            "message (timing: vs the limit)",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect(),
+        rows,
+    });
+}
