@@ -22,7 +22,7 @@ impl InputError {
     pub fn new(field: impl Into<String>, value: impl Display, expected: impl Into<String>) -> Self {
         Self {
             field: field.into(),
-            value: value.to_string(),
+            value: readable(&value.to_string()),
             expected: expected.into(),
         }
     }
@@ -32,6 +32,35 @@ impl InputError {
         self.field = format!("{prefix}.{}", self.field);
         self
     }
+}
+
+/// Longest text of one value or word shown in a message.
+const LONGEST_SHOWN: usize = 120;
+
+/// `text` with every number written in more than 24 characters (1e308 prints 309 digits) in
+/// scientific notation, and every word longer than [`LONGEST_SHOWN`] characters (a 50 000-term
+/// expression) cut, with its length said.
+pub fn readable(text: &str) -> String {
+    let mut out = String::with_capacity(text.len().min(4 * LONGEST_SHOWN));
+    for (i, word) in text.split(' ').enumerate() {
+        if i > 0 {
+            out.push(' ');
+        }
+        let core = word.trim_matches(|c: char| "`'\",;:()[]".contains(c));
+        if core.len() > 24 {
+            if let Ok(x) = core.parse::<f64>() {
+                out.push_str(&word.replacen(core, &format!("{x:e}"), 1));
+                continue;
+            }
+        }
+        if word.chars().count() > LONGEST_SHOWN {
+            let head: String = word.chars().take(LONGEST_SHOWN).collect();
+            out.push_str(&format!("{head}… ({} characters)", word.chars().count()));
+        } else {
+            out.push_str(word);
+        }
+    }
+    out
 }
 
 /// `value` if it is finite and strictly positive.
@@ -158,4 +187,29 @@ pub enum Error {
         source_name: String,
         message: String,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    //! Messages stay readable whatever the input: long numbers in scientific notation, long words
+    //! cut with their length.
+    use super::*;
+
+    #[test]
+    fn long_numbers_and_words_are_shown_readably() {
+        let e = InputError::new("rod.length", -1e308, "a finite number > 0");
+        assert_eq!(e.value, "-1e308");
+        let long = vec!["x"; 1000].join("+");
+        let r = readable(&format!("invalid `{long}` here"));
+        assert!(
+            r.contains("… (2001 characters)") && r.ends_with(" here"),
+            "{r}"
+        );
+        assert!(r.len() < 200);
+        assert_eq!(
+            readable("type: floating point `0.000000000000000000000000000001`, expected"),
+            "type: floating point `1e-30`, expected"
+        );
+        assert_eq!(readable("a = 2.5 and b = 3"), "a = 2.5 and b = 3");
+    }
 }

@@ -13,7 +13,7 @@
 
 use std::cell::Cell;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 use crate::error::SolveError;
@@ -56,6 +56,33 @@ pub fn with_time_limit<R>(limit: Duration, f: impl FnOnce() -> R) -> R {
 fn origin() -> Instant {
     static ORIGIN: OnceLock<Instant> = OnceLock::new();
     *ORIGIN.get_or_init(Instant::now)
+}
+
+static DONE: AtomicU64 = AtomicU64::new(0);
+static TOTAL: AtomicU64 = AtomicU64::new(0);
+static LABEL: Mutex<&'static str> = Mutex::new("");
+
+/// Records the progress of the running loop (`label`: "steps", "grid rows", …): two atomic
+/// stores, and a lock only when the label changes. A front end reads it with [`progress`].
+#[inline]
+pub fn report_progress(label: &'static str, done: u64, total: u64) {
+    if let Ok(mut l) = LABEL.lock() {
+        if *l != label {
+            *l = label;
+        }
+    }
+    TOTAL.store(total, Ordering::Relaxed);
+    DONE.store(done, Ordering::Relaxed);
+}
+
+/// The last progress recorded: (label, done, total).
+pub fn progress() -> (&'static str, u64, u64) {
+    let label = LABEL.lock().map(|l| *l).unwrap_or("");
+    (
+        label,
+        DONE.load(Ordering::Relaxed),
+        TOTAL.load(Ordering::Relaxed),
+    )
 }
 
 /// Requests a stop (e.g. from a Ctrl-C handler): every running loop stops at its next check.

@@ -13,7 +13,7 @@ use crate::error::{Error, InputError};
 pub(crate) fn scene_error(source_name: &str, e: impl Display) -> Error {
     Error::Scene {
         source_name: source_name.to_string(),
-        message: e.to_string(),
+        message: crate::error::readable(&e.to_string()),
     }
 }
 
@@ -55,5 +55,24 @@ pub(crate) fn reject_keys(
             format!("no such key for {key} = \"{value}\""),
         )),
         None => Ok(()),
+    }
+}
+
+/// A mesh generator's error with its field as the scene writes it: `mesh.width` → `body.size[0]`,
+/// `mesh.height` → `body.size[1]`, `mesh.radius` → `body.radius` (`section` = `body` or
+/// `geometry`).
+pub(crate) fn mesh_field_as_written(
+    section: &str,
+) -> impl Fn(crate::error::InputError) -> crate::error::InputError + '_ {
+    move |mut e| {
+        if let Some(key) = e.field.strip_prefix("mesh.") {
+            let key = match key {
+                "width" => "size[0]",
+                "height" => "size[1]",
+                other => other,
+            };
+            e.field = format!("{section}.{key}");
+        }
+        e
     }
 }

@@ -284,6 +284,9 @@ pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, 
         if !(nu > -1.0 && nu < upper) {
             return Err(InputError::new(format!("{prefix}.poisson"), nu, why));
         }
+        if let Some(e) = m.young {
+            crate::error::require_positive(&format!("{prefix}.young"), e)?;
+        }
     }
     let law: Arc<dyn PlaneLaw> = match m.law.as_str() {
         "plane_stress" => Arc::new(IsotropicLinear::plane_stress(
@@ -375,7 +378,8 @@ impl PlaneScene {
             }
         };
         let mesh =
-            TriangleMesh::graded_rectangle(g.origin, g.size, g.divisions, g.diagonal, grading)?;
+            TriangleMesh::graded_rectangle(g.origin, g.size, g.divisions, g.diagonal, grading)
+                .map_err(crate::scene::common::mesh_field_as_written("geometry"))?;
         let contact = match &file.contact {
             Some(c) => Some(ContactPart {
                 boundary: selector("contact", &c.sides, c.where_.as_ref())?,

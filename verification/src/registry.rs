@@ -89,14 +89,51 @@ pub fn run(case: &Case, ctx: &RunContext) -> CaseReport {
     report
 }
 
+/// The marker of a directory `verify scene` writes: its files are the runs' own.
+const OUT_MARKER: &str = ".contactlab-scene-out";
+
 /// Creates `out` and checks that a file can be written there, before any solving: an unwritable
-/// `--out` must not cost a whole run.
-fn writable_out(out: &Path) -> Result<(), String> {
+/// `--out` must not cost a whole run. Files of an earlier run there (a directory with the marker)
+/// are removed, so that no old `errors.json` or `map.json` stays beside the new results; a
+/// directory holding files `verify scene` did not write is refused with their list
+/// (subdirectories are left alone: other runs' outputs). Returns the files removed.
+pub fn writable_out(out: &Path) -> Result<Vec<String>, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("--out {}: {e}", out.display()))?;
-    let probe = out.join(".contactlab-write-probe");
-    std::fs::write(&probe, b"")
-        .and_then(|()| std::fs::remove_file(&probe))
-        .map_err(|e| format!("--out {}: not writable: {e}", out.display()))
+    let mut entries: Vec<String> = std::fs::read_dir(out)
+        .map_err(|e| format!("--out {}: {e}", out.display()))?
+        .flatten()
+        .filter(|e| e.path().is_file())
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .filter(|n| n != OUT_MARKER)
+        .collect();
+    entries.sort();
+    let ours = out.join(OUT_MARKER).exists();
+    if !entries.is_empty() && !ours {
+        let shown: Vec<&str> = entries.iter().take(8).map(String::as_str).collect();
+        return Err(format!(
+            "--out {}: holds {} file(s) `verify scene` did not write ({}{}): choose an empty or \
+             new directory",
+            out.display(),
+            entries.len(),
+            shown.join(", "),
+            if entries.len() > 8 { ", …" } else { "" }
+        ));
+    }
+    let mut removed = Vec::new();
+    for name in &entries {
+        let path = out.join(name);
+        if path.is_file() {
+            std::fs::remove_file(&path)
+                .map_err(|e| format!("--out {}: cannot remove {name}: {e}", out.display()))?;
+            removed.push(name.clone());
+        }
+    }
+    std::fs::write(
+        out.join(OUT_MARKER),
+        b"written by verify scene; its files are replaced by the next run\n",
+    )
+    .map_err(|e| format!("--out {}: not writable: {e}", out.display()))?;
+    Ok(removed)
 }
 
 /// `verify scene FILE --out DIR`: the solver crate reads and validates the scene once
@@ -105,11 +142,21 @@ fn writable_out(out: &Path) -> Result<(), String> {
 pub fn run_scene(file: &Path, out: &Path) -> Result<String, String> {
     let source = file.display().to_string();
     let scene = Scene::load(file).map_err(|e| format!("{source}: {e}"))?;
-    writable_out(out)?;
+    let removed = writable_out(out)?;
     let model = scene.model();
     let family = FAMILIES
         .iter()
         .find(|f| f.models().contains(&model))
         .ok_or_else(|| format!("{source}: no family writes the results of model `{model}`"))?;
-    family.write_scene(&scene, &source, out)
+    let summary = family.write_scene(&scene, &source, out)?;
+    Ok(if removed.is_empty() {
+        summary
+    } else {
+        format!(
+            "{summary}\n(removed {} file(s) of an earlier run in {}: {})",
+            removed.len(),
+            out.display(),
+            removed.join(", ")
+        )
+    })
 }

@@ -56,6 +56,31 @@ fn run_bounded(
         .unwrap_or_else(|_| panic!("{id}: no answer within {seconds} s (a hang)"))
 }
 
+/// Runs the scene text past the file loader's magnitude check (`Scene::from_table`, the path the
+/// verification cases take), within `seconds`: the solvers themselves must answer extreme data.
+fn run_table_bounded(id: &str, scene: String, seconds: u64) -> Result<String, String> {
+    let out = std::env::temp_dir().join(format!(
+        "contactlab-robustness-t-{id}-{}",
+        std::process::id()
+    ));
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        let r = (|| {
+            let table: toml::Table = scene.parse().map_err(|e| format!("{e}"))?;
+            let scene = contactlab::scene::Scene::from_table(table, "scene.toml")
+                .map_err(|e| e.to_string())?;
+            let family = contactlab_verify::registry::FAMILIES
+                .iter()
+                .find(|f| f.models().contains(&scene.model()))
+                .ok_or("no family")?;
+            family.write_scene(&scene, "scene.toml", &out)
+        })();
+        let _ = tx.send(r);
+    });
+    rx.recv_timeout(Duration::from_secs(seconds))
+        .unwrap_or_else(|_| panic!("{id}: no answer within {seconds} s (a hang)"))
+}
+
 fn expect_error(id: &str, scene: String, needles: &[&str]) {
     match run_bounded(id, scene, None, 120) {
         Ok(summary) => panic!("{id}: ran, expected an error naming {needles:?}: {summary}"),
@@ -134,21 +159,22 @@ fn a_plane_run_that_skips_every_step_is_an_error() {
 
 #[test]
 fn a_tiny_young_modulus_answers() {
-    // Once: the dense tridiagonal QR of the explicit bound's eigenproblem never ended.
-    let r = run_bounded(
-        "plane-young",
-        mutated(
-            "plane_paper_test_2d.toml",
-            &[
-                ("elasticity.young", "1e-308"),
-                ("geometry.divisions", "[6, 6]"),
-                ("time.steps", "5"),
-            ],
-        ),
-        None,
-        120,
+    // Once: the dense tridiagonal QR of the explicit bound's eigenproblem never ended. A scene
+    // file with it is refused up front (the key named); the solver path must still answer.
+    let scene = mutated(
+        "plane_paper_test_2d.toml",
+        &[
+            ("elasticity.young", "1e-308"),
+            ("geometry.divisions", "[6, 6]"),
+            ("time.steps", "5"),
+        ],
     );
-    if let Err(e) = r {
+    let e = run_bounded("plane-young", scene.clone(), None, 120).unwrap_err();
+    assert!(
+        e.contains("elasticity.young") && e.contains("1e-150"),
+        "{e}"
+    );
+    if let Err(e) = run_table_bounded("plane-young", scene, 120) {
         assert!(!e.contains("panicked"), "{e}");
     }
 }
@@ -157,12 +183,13 @@ fn a_tiny_young_modulus_answers() {
 fn a_disc_particle_of_extreme_mass_answers() {
     // Once: the balancing before the eigenvalue solve never ended (inf >= 2 inf).
     for mass in ["1e308", "1e-308", "5e-324"] {
-        let r = run_bounded(
-            &format!("disc-mass-{mass}"),
-            mutated("moving_disc_particle.toml", &[("particle.mass", mass)]),
-            None,
-            120,
+        let scene = mutated("moving_disc_particle.toml", &[("particle.mass", mass)]);
+        let e = run_bounded(&format!("disc-mass-{mass}"), scene.clone(), None, 120).unwrap_err();
+        assert!(
+            e.contains("particle.mass"),
+            "a scene file is refused up front: {e}"
         );
+        let r = run_table_bounded(&format!("disc-mass-{mass}"), scene, 120);
         if let Err(e) = r {
             assert!(
                 e.contains("particle.mass") || e.contains("finite"),
@@ -341,4 +368,130 @@ fn a_block_resting_under_gravity_converges_at_its_round_off_floor() {
         .and_then(|t| t.parse().ok())
         .expect("a number");
     assert!(drift < 1e-12, "{summary}");
+}
+
+#[test]
+fn files_of_an_earlier_run_are_removed_and_foreign_files_refused() {
+    // Once: an old errors.json or map.json stayed beside the new results without a word.
+    let dir = std::env::temp_dir().join(format!("contactlab-stale-out-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.join("out");
+    let first = run_bounded(
+        "stale-1",
+        mutated("rod_paper_p0_2.toml", &[]),
+        Some(out.clone()),
+        120,
+    )
+    .expect("the rod runs");
+    assert!(!first.contains("removed"), "{first}");
+    assert!(out.join("errors.json").exists());
+    // a second scene without an exact solution: the old errors.json must go
+    let second = run_bounded(
+        "stale-2",
+        mutated("rod_sand_foundation.toml", &[]),
+        Some(out.clone()),
+        120,
+    )
+    .expect("the rod runs");
+    assert!(
+        second.contains("errors.json"),
+        "the summary lists what it removed: {second}"
+    );
+    assert!(
+        !out.join("errors.json").exists(),
+        "the stale errors.json stayed"
+    );
+    assert!(out.join("solution.json").exists());
+    // a directory with someone else's files is refused, with their names
+    let foreign = dir.join("foreign");
+    std::fs::create_dir_all(&foreign).unwrap();
+    std::fs::write(foreign.join("thesis.tex"), "").unwrap();
+    let e = run_bounded(
+        "stale-3",
+        mutated("rod_paper_p0_2.toml", &[]),
+        Some(foreign),
+        120,
+    )
+    .unwrap_err();
+    assert!(e.contains("--out") && e.contains("thesis.tex"), "{e}");
+}
+
+#[test]
+fn every_message_names_the_key_as_written_and_stays_readable() {
+    // Once: mesh.width for size, elasticity = a1 …, a2 … for young, output.times for a negative
+    // final_time, 309 digits for 1e308, a whole 50 000-term expression echoed back.
+    // (example, changed keys, what the message must contain)
+    type MessageCase<'a> = (&'a str, &'a [(&'a str, &'a str)], &'a [&'a str]);
+    let cases: [MessageCase; 9] = [
+        (
+            "plane_nonlinear_block.toml",
+            &[("geometry.size", "[-1.0, 1.0]")],
+            &["geometry.size[0]"],
+        ),
+        (
+            "plane_paper_test_2d.toml",
+            &[("elasticity.young", "-5.0")],
+            &["elasticity.young"],
+        ),
+        (
+            "dynamic_block_drop.toml",
+            &[("body.size", "[0.0, 0.2]")],
+            &["body.size[0]"],
+        ),
+        (
+            "dynamic_block_drop.toml",
+            &[("time.final_time", "-5.0")],
+            &["time.final_time = -5"],
+        ),
+        (
+            "dynamic_ball_impact.toml",
+            &[("body.radius", "-1.0")],
+            &["body.radius"],
+        ),
+        (
+            "moving_penalty_bushing.toml",
+            &[("discretization.modes", "100000")],
+            &["discretization.modes"],
+        ),
+        (
+            "rod_paper_p0_2.toml",
+            &[("rod.length", "-1e308")],
+            &["rod.length = -1e308"],
+        ),
+        (
+            "dynamic_ball_impact.toml",
+            &[("contact.stiffness", "1e300")],
+            &["contact.stiffness", "1e300"],
+        ),
+        (
+            "rod_paper_p0_2.toml",
+            &[("rod.viscosity", "1e-300")],
+            &["rod.viscosity = 1e-300"],
+        ),
+    ];
+    let long = format!("\"{}\"", vec!["x"; 2001].join("+"));
+    let e = run_bounded(
+        "messages-long",
+        mutated("rod_sand_foundation.toml", &[("rod.load", &long)]),
+        None,
+        120,
+    )
+    .expect_err("an expression of 4001 characters is refused");
+    assert!(e.contains("rod.load") && e.contains("characters"), "{e}");
+    assert!(e.len() < 800, "{} characters: {e}", e.len());
+    for (i, (example, set, needles)) in cases.iter().enumerate() {
+        let e = run_bounded(&format!("messages-{i}"), mutated(example, set), None, 120)
+            .expect_err("an error");
+        for n in *needles {
+            assert!(
+                e.contains(n),
+                "{example} {set:?}: the error does not name {n:?}: {e}"
+            );
+        }
+        assert!(
+            e.len() < 800,
+            "{example} {set:?}: {} characters: {e}",
+            e.len()
+        );
+    }
 }

@@ -190,6 +190,28 @@ pub struct AuditRecord {
 }
 
 impl AuditRecord {
+    /// The first of the record's quantities that is not finite, with its value.
+    pub fn first_non_finite(&self) -> Option<(&'static str, f64)> {
+        [
+            ("kinetic energy", self.kinetic),
+            ("stored energy", self.elastic),
+            ("penalty energy", self.penalty),
+            ("external work", self.external_work),
+            ("contact work", self.contact_work),
+            ("friction work", self.friction_work),
+            ("constraint work", self.constraint_work),
+            ("round-off scale of the stiffness work", self.stiffness_work),
+            ("round-off scale of the Newton work", self.newton_work),
+            ("contact force", self.contact_force),
+            ("penetration", self.max_penetration),
+            ("friction force", self.friction_force),
+        ]
+        .into_iter()
+        .find(|(_, v)| !v.is_finite())
+    }
+}
+
+impl AuditRecord {
     /// E_n = kinetic + elastic.
     pub fn energy(&self) -> f64 {
         self.kinetic + self.elastic

@@ -371,6 +371,7 @@ impl DynamicSolver {
             crate::run_control::check(|| {
                 format!("step {step} of {} (t = {})", pb.steps, k * step as f64)
             })?;
+            crate::run_control::report_progress("steps", step as u64, pb.steps as u64);
             let t = k * step as f64;
             let at = StepAt { step, time: t };
             // the step's load and constant data b
@@ -593,13 +594,25 @@ impl DynamicSolver {
                     nodes: &audit_nodes,
                 })
             };
-            if !(rec.kinetic.is_finite() && rec.elastic.is_finite()) {
+            if let Some((quantity, value)) = rec.first_non_finite() {
+                // the likely cause: the data at the first step, else the scheme
+                let hint = if step == 1 {
+                    " — the first step's values overflow: the magnitudes of the loads, initial \
+                     velocities, moduli or contact stiffness in the scene are too large (or too \
+                     small) for each other"
+                } else if scheme == DynamicScheme::Gonzalez {
+                    " — Gonzalez's scheme conserves energy, so the growth comes from the data \
+                     (loads, contact stiffness) or from a step too large for its Newton method: \
+                     try a smaller step"
+                } else {
+                    " — the scheme lost stability (try gonzalez or a smaller step)"
+                };
                 return Err(SolveError::NonFinite {
                     step,
                     time: t,
-                    quantity: "energy".into(),
-                    value: rec.kinetic + rec.elastic,
-                    hint: " — the scheme lost stability (try gonzalez or a smaller step)".into(),
+                    quantity: format!("{quantity} in the energy audit"),
+                    value,
+                    hint: hint.into(),
                 }
                 .into());
             }

@@ -181,6 +181,11 @@ where
                             if iy >= rows {
                                 break;
                             }
+                            crate::run_control::report_progress(
+                                "grid rows",
+                                iy as u64,
+                                rows as u64,
+                            );
                             if let Err(e) = crate::run_control::check(|| {
                                 format!("row {} of {rows} of the parameter grid", iy + 1)
                             }) {

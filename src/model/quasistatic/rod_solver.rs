@@ -275,6 +275,7 @@ impl RodSolver {
             let t_prev = self.grid.times()[n - 1];
             let t = self.grid.times()[n];
             crate::run_control::check(|| format!("step {n} of {} (t = {t})", self.grid.steps()))?;
+            crate::run_control::report_progress("steps", n as u64, self.grid.steps() as u64);
             let k = t - t_prev;
             let tau = self.scheme.data_time(t_prev, t);
             if self.scheme == TimeScheme::Explicit && k >= bound {

@@ -161,6 +161,8 @@ impl DynamicScene {
                 .into())
             }
         };
+        // the final time first: output times are checked against it
+        crate::error::require_positive("time.final_time", file.time.final_time)?;
         for (i, t) in file.output.times.iter().enumerate() {
             if !(t.is_finite() && *t >= 0.0 && *t <= file.time.final_time) {
                 return Err(InputError::new(

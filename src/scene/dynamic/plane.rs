@@ -12,6 +12,7 @@ use crate::model::dynamic::contact_model::ContactModel;
 use crate::model::dynamic::plane_body::{PlaneBody, PlaneBodyData};
 use crate::model::quasistatic::plane::BoundarySelector;
 use crate::scene::boundary::{dirichlet_parts, require_parts_selected, selector, traction_parts};
+use crate::scene::common::mesh_field_as_written;
 use crate::scene::common::{missing, reject_keys};
 use crate::scene::dynamic::body::{BodyParts, SceneBody};
 use crate::scene::dynamic::contact::{friction, treatment};
@@ -36,7 +37,8 @@ pub(super) fn mesh(b: &BodySection, given: &[(&str, bool)]) -> Result<TriangleMe
                     .ok_or_else(|| missing("body.divisions", "[n_x, n_y]"))?,
                 b.diagonal.unwrap_or_default(),
                 [Grading::UNIFORM; 2],
-            )?
+            )
+            .map_err(mesh_field_as_written("body"))?
         }
         "disk" => {
             reject_keys(
@@ -51,7 +53,8 @@ pub(super) fn mesh(b: &BodySection, given: &[(&str, bool)]) -> Result<TriangleMe
                     .ok_or_else(|| missing("body.radius", "a radius > 0"))?,
                 b.rings
                     .ok_or_else(|| missing("body.rings", "a number of rings ≥ 1"))?,
-            )?
+            )
+            .map_err(mesh_field_as_written("body"))?
         }
         "annulus" => {
             reject_keys(
@@ -70,7 +73,8 @@ pub(super) fn mesh(b: &BodySection, given: &[(&str, bool)]) -> Result<TriangleMe
                     .ok_or_else(|| missing("body.radial", "layers ≥ 1"))?,
                 b.around
                     .ok_or_else(|| missing("body.around", "cells around ≥ 3"))?,
-            )?
+            )
+            .map_err(mesh_field_as_written("body"))?
         }
         other => {
             return Err(InputError::new(

@@ -152,6 +152,7 @@ impl DiscScene {
         for (param, values) in &self.sweeps {
             let mut points = Vec::new();
             for (i, &v) in values.iter().enumerate() {
+                crate::run_control::report_progress("sweep points", i as u64, values.len() as u64);
                 crate::run_control::check(|| {
                     format!("point {} of {} of the sweep", i + 1, values.len())
                 })?;

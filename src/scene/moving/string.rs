@@ -246,10 +246,16 @@ impl MovingStringScene {
             StringDiscretization::FiniteElements { elements, .. } => 2 * elements,
         };
         if dim > 400 {
+            let (key, written) = match discretization {
+                StringDiscretization::Sine { modes } => ("discretization.modes", modes),
+                StringDiscretization::FiniteElements { elements, .. } => {
+                    ("discretization.elements", elements)
+                }
+            };
             return Err(InputError::new(
-                "discretization",
-                dim,
-                "at most 400 string coordinates (dense eigenproblems)",
+                key,
+                written,
+                format!("at most 400 string coordinates (dense eigenproblems); this gives {dim}"),
             )
             .into());
         }
@@ -291,6 +297,27 @@ impl MovingStringScene {
                 Some((x, y))
             }
         };
+        // memory: each sweep point keeps its 2·dim eigenvalues (and the tracked branches), each
+        // map point its assessment; each worker a dense eigenproblem of order 2·dim
+        let coords = dim as f64 + 2.0;
+        let sweep_points: f64 = sweeps.iter().map(|a| a.values.len() as f64).sum();
+        let map_points = map
+            .as_ref()
+            .map_or(0.0, |(x, y)| x.values.len() as f64 * y.values.len() as f64);
+        let estimate = sweep_points * 2.0 * coords * 16.0 * 3.0
+            + map_points * 256.0
+            + 16.0 * (2.0 * coords).powi(2) * 8.0 * 4.0;
+        let (field, written) = if map_points > sweep_points {
+            ("map.x.points × map.y.points", format!("{map_points}"))
+        } else {
+            ("sweep[].points", format!("{sweep_points}"))
+        };
+        crate::scene::memory::require_memory(
+            field,
+            written,
+            estimate,
+            "48 B × 2(N + 2) per sweep point + 256 B per map point + dense eigen workspaces",
+        )?;
         Ok(Self {
             title: f.title.clone(),
             model,

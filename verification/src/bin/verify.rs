@@ -120,6 +120,39 @@ fn repository_root() -> PathBuf {
     manifest.parent().map(PathBuf::from).unwrap_or(manifest)
 }
 
+/// On a terminal, a progress bar of the running scene (steps, grid rows, sweep points), redrawn
+/// from contactlab::run_control's counters four times a second until the flag is set.
+fn scene_progress() -> Option<(
+    std::sync::Arc<std::sync::atomic::AtomicBool>,
+    std::thread::JoinHandle<()>,
+)> {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let done = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let flag = done.clone();
+    let handle = std::thread::spawn(move || {
+        let bar = indicatif::ProgressBar::new(0);
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "{msg} {pos}/{len} [{bar:30}] {elapsed_precise} (eta {eta}); Ctrl-C stops and writes what there is",
+        ) {
+            bar.set_style(style);
+        }
+        while !flag.load(std::sync::atomic::Ordering::Relaxed) {
+            let (label, n, total) = contactlab::run_control::progress();
+            if total > 0 {
+                bar.set_length(total);
+                bar.set_position(n);
+                bar.set_message(label);
+            }
+            std::thread::sleep(std::time::Duration::from_millis(250));
+        }
+        bar.finish_and_clear();
+    });
+    Some((done, handle))
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match &cli.command {
@@ -153,7 +186,13 @@ fn main() -> ExitCode {
                     }
                 }
             }
-            return match registry::run_scene(file, out) {
+            let progress = scene_progress();
+            let result = registry::run_scene(file, out);
+            if let Some((done, handle)) = progress {
+                done.store(true, std::sync::atomic::Ordering::Relaxed);
+                let _ = handle.join();
+            }
+            return match result {
                 Ok(summary) => {
                     println!("{summary}");
                     println!("wrote {}", out.display());

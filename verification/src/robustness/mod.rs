@@ -133,7 +133,8 @@ impl Outcome {
         }
     }
 
-    fn is_defect(self) -> bool {
+    /// Panic, hang or non-finite output.
+    pub fn is_defect(self) -> bool {
         matches!(self, Outcome::Panic | Outcome::Hang | Outcome::NonFinite)
     }
 }
@@ -151,8 +152,9 @@ struct SceneResult {
     message: String,
 }
 
-/// A scene of the campaign: the base with its shrink values, mutated.
-fn scene_text(
+/// A scene of the campaign: the base with its shrink values, mutated; with the mutated keys' last
+/// components and a description of the mutations.
+pub fn scene_text(
     base: &toml::Table,
     seed: u64,
     b: usize,
@@ -187,7 +189,7 @@ fn scene_text(
 }
 
 /// The base scene with its shrink values applied.
-fn shrunk(case_dir: &Path, base: &Base) -> Result<toml::Table, String> {
+pub fn shrunk(case_dir: &Path, base: &Base) -> Result<toml::Table, String> {
     let path = case_dir.join(&base.scene);
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut doc = toml::Value::Table(
@@ -244,6 +246,33 @@ fn run_one(
         return Some((Err("cannot spawn a thread".into()), false));
     }
     rx.recv_timeout(limit + grace).ok()
+}
+
+/// Runs one scene (TOML `text`) in `dir` with its time limit and classifies the outcome; the
+/// message is the summary, the error, or where a non-finite number was written.
+pub fn classify(
+    runner: SceneRunner,
+    dir: &Path,
+    text: String,
+    limit: Duration,
+    grace: Duration,
+) -> (Outcome, String) {
+    match run_one(runner, dir, text, limit, grace) {
+        None => (Outcome::Hang, String::new()),
+        Some((Err(p), true)) => (Outcome::Panic, p),
+        Some((Ok(_), true)) => (Outcome::Panic, String::new()),
+        Some((Ok(summary), false)) => match outputs::first_non_finite(&dir.join("out")) {
+            Some(where_) => (Outcome::NonFinite, where_),
+            None => (Outcome::Ran, summary),
+        },
+        Some((Err(e), false)) => {
+            if e.contains("the time limit of") {
+                (Outcome::Stopped, e)
+            } else {
+                (Outcome::Error, e)
+            }
+        }
+    }
 }
 
 /// Runs the campaign and fills the report.
@@ -336,25 +365,7 @@ pub fn run(
                             break;
                         };
                         let (text, keys, mutations) = scene_text(&bases[b], c.seed, b, index);
-                        let answer = run_one(runner, &dir, text, limit, grace);
-                        let (outcome, message) = match answer {
-                            None => (Outcome::Hang, String::new()),
-                            Some((Err(p), true)) => (Outcome::Panic, p),
-                            Some((Ok(_), true)) => (Outcome::Panic, String::new()),
-                            Some((Ok(summary), false)) => {
-                                match outputs::first_non_finite(&dir.join("out")) {
-                                    Some(where_) => (Outcome::NonFinite, where_),
-                                    None => (Outcome::Ran, summary),
-                                }
-                            }
-                            Some((Err(e), false)) => {
-                                if e.contains("the time limit of") {
-                                    (Outcome::Stopped, e)
-                                } else {
-                                    (Outcome::Error, e)
-                                }
-                            }
-                        };
+                        let (outcome, message) = classify(runner, &dir, text, limit, grace);
                         mine.push((
                             w,
                             SceneResult {
