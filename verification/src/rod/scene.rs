@@ -63,14 +63,35 @@ pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String,
             scene.grid.steps(),
         )
     });
-    let stats = solver
-        .run(&mut |s: &RodStep<'_>| {
-            recorder.observe(s);
-            if let Some(e) = errors.as_mut() {
-                e.observe(s);
-            }
-        })
-        .map_err(|e| format!("{source}: {e}"))?;
+    let outcome = solver.run(&mut |s: &RodStep<'_>| {
+        recorder.observe(s);
+        if let Some(e) = errors.as_mut() {
+            e.observe(s);
+        }
+    });
+    let stats = match outcome {
+        Ok(stats) => stats,
+        Err(e) => {
+            // what was computed up to the failure is written (the steps observed, every number
+            // finite), and the error says where
+            let partial = recorder.finish(Default::default());
+            let written = std::fs::create_dir_all(out)
+                .map_err(|e| e.to_string())
+                .and_then(|()| crate::core::json_out::finite_json(&partial, true))
+                .and_then(|json| {
+                    std::fs::write(out.join("partial_solution.json"), json)
+                        .map_err(|e| e.to_string())
+                });
+            return Err(match written {
+                Ok(()) => format!(
+                    "{source}: {e}; the results of steps 0 to {} are in {}",
+                    partial.times.len().saturating_sub(1),
+                    out.join("partial_solution.json").display()
+                ),
+                Err(w) => format!("{source}: {e} (nothing written: {w})"),
+            });
+        }
+    };
     let solution = recorder.finish(stats);
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let write = |name: &str, json: String| {
