@@ -62,6 +62,7 @@ impl Scene {
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<Self, Error> {
         let table: toml::Table = text.parse().map_err(|e| scene_error(source_name, e))?;
         check_magnitudes(&toml::Value::Table(table.clone()), &mut String::new())?;
+        check_sections(&table)?;
         Self::from_table(table, source_name)
     }
 
@@ -192,6 +193,75 @@ impl Solution {
             ),
         }
     }
+}
+
+/// The keys of the scene formats that hold a table (a `[section]` or an inline `{ … }`), or for
+/// the repeated ones an array of tables.
+const TABLE_KEYS: [&str; 24] = [
+    "body",
+    "body_force",
+    "contact",
+    "contact.friction",
+    "discretization",
+    "elasticity",
+    "exact",
+    "foundation",
+    "geometry",
+    "initial",
+    "map",
+    "map.x",
+    "map.y",
+    "material",
+    "mesh",
+    "oscillator",
+    "output",
+    "particle",
+    "rod",
+    "solver",
+    "stability",
+    "string",
+    "time",
+    "viscosity",
+];
+
+/// Keys whose arrays of tables are the repeated sections (`[[sweep]]`).
+const REPEATED_KEYS: [&str; 3] = ["dirichlet", "traction", "sweep"];
+
+/// A section written as something else is refused: serde would read `string = [0.5, 0.05]` as
+/// the fields of `[string]` in order, silently.
+fn check_sections(table: &toml::Table) -> Result<(), Error> {
+    let section = |path: &str, v: &toml::Value| -> Result<(), Error> {
+        let ok = match v {
+            toml::Value::Table(_) => !REPEATED_KEYS.contains(&path),
+            toml::Value::Array(a) => {
+                REPEATED_KEYS.contains(&path) && a.iter().all(toml::Value::is_table)
+            }
+            _ => false,
+        };
+        if ok {
+            return Ok(());
+        }
+        let expected = if REPEATED_KEYS.contains(&path) {
+            format!("tables: [[{path}]] sections")
+        } else {
+            format!("a table: a [{path}] section or {path} = {{ key = value, … }}")
+        };
+        Err(InputError::new(path, v, expected).into())
+    };
+    for (k, v) in table {
+        if TABLE_KEYS.contains(&k.as_str()) || REPEATED_KEYS.contains(&k.as_str()) {
+            section(k, v)?;
+        }
+        if let toml::Value::Table(inner) = v {
+            for (k2, v2) in inner {
+                let path = format!("{k}.{k2}");
+                if TABLE_KEYS.contains(&path.as_str()) {
+                    section(&path, v2)?;
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The largest magnitude a number of a scene file may have, and (besides 0) the smallest.

@@ -125,6 +125,16 @@ fn zero_graded_rod_elements_name_mesh_elements() {
 }
 
 #[test]
+fn a_section_written_as_an_array_is_an_error() {
+    // Once: `string = [0.5, 0.05]` was read as the fields of [string] in order, silently.
+    expect_error(
+        "section-array",
+        mutated("moving_thick_string.toml", &[("string", "[0.5, 0.05]")]),
+        &["invalid string", "a table"],
+    );
+}
+
+#[test]
 fn fixed_size_pairs_with_extra_values_are_errors() {
     expect_error(
         "plane-size",
