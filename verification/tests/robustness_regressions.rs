@@ -505,3 +505,30 @@ fn every_message_names_the_key_as_written_and_stays_readable() {
         );
     }
 }
+
+#[test]
+fn a_stopped_rod_or_plane_run_writes_what_it_computed() {
+    // A run stopped at its first step (a time limit of zero) writes the steps recorded before,
+    // every number finite, and says where.
+    for (i, example) in ["rod_paper_p0_2.toml", "plane_nonlinear_block.toml"]
+        .iter()
+        .enumerate()
+    {
+        let dir =
+            std::env::temp_dir().join(format!("contactlab-partial-{i}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("scene.toml");
+        std::fs::write(&file, mutated(example, &[])).unwrap();
+        let out = dir.join("out");
+        let e = contactlab::run_control::with_time_limit(Duration::ZERO, || run_scene(&file, &out))
+            .expect_err("stopped");
+        assert!(
+            e.contains("time limit") && e.contains("partial_solution.json"),
+            "{e}"
+        );
+        let text = std::fs::read_to_string(out.join("partial_solution.json")).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert!(!text.contains("null"), "{example}: a null in {v}");
+    }
+}

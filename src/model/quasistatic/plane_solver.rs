@@ -249,9 +249,24 @@ impl PlaneSolver {
     /// Runs and records the snapshots of `request` and the contact histories
     /// ([`PlaneRecorder`]).
     pub fn solve(&mut self, request: &PlaneOutputRequest) -> Result<PlaneSolution, Error> {
-        let mut recorder = PlaneRecorder::new(&self.problem, &self.dofs, &self.grid, request)?;
-        let stats = self.run(&mut recorder)?;
-        Ok(recorder.finish(stats))
+        self.solve_or_partial(request).map_err(|(e, _)| e)
+    }
+
+    /// [`Self::solve`], and on a failure of the run the solution recorded up to it (the steps
+    /// observed; statistics left at zero) with the error.
+    pub fn solve_or_partial(
+        &mut self,
+        request: &PlaneOutputRequest,
+    ) -> Result<PlaneSolution, (Error, Option<Box<PlaneSolution>>)> {
+        let mut recorder = PlaneRecorder::new(&self.problem, &self.dofs, &self.grid, request)
+            .map_err(|e| (e.into(), None))?;
+        match self.run(&mut recorder) {
+            Ok(stats) => Ok(recorder.finish(stats)),
+            Err(e) => Err((
+                e.into(),
+                Some(Box::new(recorder.finish(PlaneStats::default()))),
+            )),
+        }
     }
 
     /// Runs from t_0 to t_N, calling `observer` at n = 0 and after every step.

@@ -94,12 +94,31 @@ pub fn write_scene(scene: &PlaneScene, source: &str, out: &Path) -> Result<Strin
     } else {
         None
     };
-    let sol = solver.solve(&scene.output).map_err(|e| match bound {
-        Some(kmax) if scene.grid.k_max() >= kmax => format!(
-            "{source}: {e} (the explicit step bound 2/λ_max(A⁻¹B) of this scene is {kmax:.6}, k = {})",
-            scene.grid.k_max()
-        ),
-        _ => format!("{source}: {e}"),
+    let sol = solver.solve_or_partial(&scene.output).map_err(|(e, partial)| {
+        let message = match bound {
+            Some(kmax) if scene.grid.k_max() >= kmax => format!(
+                "{source}: {e} (the explicit step bound 2/λ_max(A⁻¹B) of this scene is {kmax:.6}, k = {})",
+                scene.grid.k_max()
+            ),
+            _ => format!("{source}: {e}"),
+        };
+        // what was computed up to the failure is written, every number finite
+        let Some(partial) = partial else {
+            return message;
+        };
+        let written = std::fs::create_dir_all(out)
+            .map_err(|e| e.to_string())
+            .and_then(|()| crate::core::json_out::finite_json(&*partial, true))
+            .and_then(|json| {
+                std::fs::write(out.join("partial_solution.json"), json).map_err(|e| e.to_string())
+            });
+        match written {
+            Ok(()) => format!(
+                "{message}; the results recorded before are in {}",
+                out.join("partial_solution.json").display()
+            ),
+            Err(w) => format!("{message} (nothing written: {w})"),
+        }
     })?;
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let path = out.join("solution.json");
