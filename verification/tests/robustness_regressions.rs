@@ -295,34 +295,23 @@ fn gonzalez_runs_through_a_step_of_three_contact_durations() {
     // Once: "singular or indefinite dynamic step Jacobian αM + θK_T at step 1" — the symmetric
     // part of the discrete-gradient tangent is indefinite at k = 5e-2 (α = 800, E = 1e8), and
     // the Cholesky factorization refused it. Now the exact tangent's LU takes over.
-    let scene = r#"
-model = "dynamic"
-title = "ring impact, k = 5e-2"
-[body]
-shape = "annulus"
-center = [0.0, 0.5]
-inner = 0.3
-outer = 0.5
-radial = 2
-around = 24
-density = 1000.0
-[material]
-law = "neo_hooke"
-young = 1e8
-poisson = 0.3
-[time]
-final_time = 0.05
-steps = 1
-scheme = "gonzalez"
-[initial]
-velocity = [2.0, -5.0]
-[contact]
-level = 0.0
-where = "0.5 - y"
-treatment = "energy_consistent"
-stiffness = 1e10
-"#;
-    let summary = run_bounded("gonzalez-large-step", scene.to_string(), None, 120)
+    // the spinning-ring example moved to the foundation: E = 1e8, thrown at (2, −5) m/s, r = 1e10
+    let scene = mutated(
+        "dynamic_spinning_ring.toml",
+        &[
+            ("body.center", "[0.0, 0.5]"),
+            ("material.young", "1e8"),
+            ("time.final_time", "0.05"),
+            ("time.steps", "1"),
+            ("initial.velocity", "[2.0, -5.0]"),
+            ("output.times", "[0.0]"),
+            ("contact.level", "0.0"),
+            ("contact.where", "\"0.5 - y\""),
+            ("contact.treatment", "\"energy_consistent\""),
+            ("contact.stiffness", "1e10"),
+        ],
+    );
+    let summary = run_bounded("gonzalez-large-step", scene, None, 120)
         .unwrap_or_else(|e| panic!("the run must complete: {e}"));
     assert!(summary.contains("1 of 1 steps"), "{summary}");
     let number_after = |key: &str| -> f64 {
