@@ -50,6 +50,8 @@ pub mod branches;
 pub mod disc;
 pub mod finite_element_basis;
 pub mod friction;
+pub mod linearized;
+pub mod plate;
 pub mod properties;
 pub mod resolution;
 pub mod stability;

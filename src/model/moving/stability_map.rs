@@ -16,7 +16,7 @@ use faer::{c64, Mat};
 use serde::Serialize;
 
 use crate::error::{Error, InputError, SolveError};
-use crate::model::moving::resolution::model_resolution_limit;
+use crate::model::moving::linearized::LinearizedModel;
 use crate::model::moving::stability::{
     assess, assess_resolved, StabilityAssessment, Verdict, VerdictParams,
 };
@@ -25,21 +25,28 @@ use crate::model::moving::string_model::MovingStringModel;
 use crate::model::moving::system::MovingSystem;
 use crate::solve::quadratic_eigen::{EigenKernel, QuadraticEigenParams, QuadraticEigenSolver};
 
+/// A parameter that sweeps and maps vary: its key as a scene writes it.
+pub trait AxisParameter: Copy + PartialEq + std::fmt::Debug + Serialize {
+    /// The key (`speed`, `angular_speed`, …).
+    fn key(self) -> &'static str;
+}
+
+impl AxisParameter for StringParameter {
+    fn key(self) -> &'static str {
+        StringParameter::key(self)
+    }
+}
+
 /// The values of one parameter along one axis of a map or sweep.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct GridAxis {
-    pub parameter: StringParameter,
+pub struct GridAxis<P = StringParameter> {
+    pub parameter: P,
     pub values: Vec<f64>,
 }
 
-impl GridAxis {
+impl<P: AxisParameter> GridAxis<P> {
     /// `points` equally spaced values from `from` to `to` (both included; `points` ≥ 2).
-    pub fn linspace(
-        parameter: StringParameter,
-        from: f64,
-        to: f64,
-        points: usize,
-    ) -> Result<Self, InputError> {
+    pub fn linspace(parameter: P, from: f64, to: f64, points: usize) -> Result<Self, InputError> {
         let field = format!("axis.{}", parameter.key());
         if points < 2 {
             return Err(InputError::new(
@@ -106,9 +113,9 @@ impl Default for StabilityMapParams {
 /// The verdicts on a grid: each read from the eigenvalues below the model's resolution limit
 /// (`resolution.rs`), with the unstable ones above it reported as the point's warning.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct StabilityMap {
-    pub x: GridAxis,
-    pub y: GridAxis,
+pub struct StabilityMap<P = StringParameter> {
+    pub x: GridAxis<P>,
+    pub y: GridAxis<P>,
     /// Row-major: point (ix, iy) at `iy * nx + ix`.
     pub points: Vec<StabilityAssessment>,
     /// The threads that ran (for the record; not part of the result).
@@ -116,7 +123,7 @@ pub struct StabilityMap {
     pub threads_used: usize,
 }
 
-impl StabilityMap {
+impl<P> StabilityMap<P> {
     /// The assessment at (ix, iy).
     pub fn at(&self, ix: usize, iy: usize) -> Option<&StabilityAssessment> {
         (ix < self.x.values.len())
@@ -219,8 +226,9 @@ where
     Ok((out, threads))
 }
 
-/// A worker's buffers for string systems.
-pub struct StringWorkspace {
+/// A worker's buffers: the system, C and K, and the eigensolver with its factored mass matrix
+/// (refactored only when the model's mass key changes).
+pub struct EigenWorkspace {
     system: MovingSystem,
     c: Mat<f64>,
     k: Mat<f64>,
@@ -228,9 +236,9 @@ pub struct StringWorkspace {
     eigenvalues: Vec<c64>,
 }
 
-impl StringWorkspace {
+impl EigenWorkspace {
     /// Buffers for `model` with data shaped like `data`.
-    pub fn new(model: &MovingStringModel, data: &MovingStringData) -> Self {
+    pub fn new<Mo: LinearizedModel>(model: &Mo, data: &Mo::Data) -> Self {
         let coords = model.coordinates(data);
         let n = coords.len();
         Self {
@@ -243,17 +251,17 @@ impl StringWorkspace {
     }
 
     /// Assembles and solves the system for `data`; returns its eigenvalues.
-    pub fn eigenvalues(
+    pub fn eigenvalues<Mo: LinearizedModel>(
         &mut self,
-        model: &MovingStringModel,
-        data: &MovingStringData,
+        model: &Mo,
+        data: &Mo::Data,
         eigen: QuadraticEigenParams,
     ) -> Result<&[c64], Error> {
         model.assemble_into(data, &mut self.system)?;
         self.system.velocity_matrix_into(&mut self.c);
         self.system.stiffness_matrix_into(&mut self.k);
-        let mass_key = data.oscillator.map_or(0.0, |o| o.mass);
-        let at = || describe(data);
+        let mass_key = model.mass_key(data);
+        let at = || model.describe(data);
         let rebuild = !matches!(&self.solver, Some((m, _)) if *m == mass_key);
         if rebuild {
             let solver = QuadraticEigenSolver::new(self.system.mass.as_ref(), eigen)
@@ -290,8 +298,20 @@ pub fn string_stability_map(
     y: &GridAxis,
     params: &StabilityMapParams,
 ) -> Result<StabilityMap, Error> {
+    stability_map(model, base, x, y, params)
+}
+
+/// The stability map of any linearized model over the grid x × y, every other parameter from
+/// `base`: point by point, or line by line when one axis is a rank-one parameter ([`line_map`]).
+pub fn stability_map<Mo: LinearizedModel>(
+    model: &Mo,
+    base: &Mo::Data,
+    x: &GridAxis<Mo::Parameter>,
+    y: &GridAxis<Mo::Parameter>,
+    params: &StabilityMapParams,
+) -> Result<StabilityMap<Mo::Parameter>, Error> {
     params.validate()?;
-    base.validate()?;
+    model.validate_data(base)?;
     if x.parameter == y.parameter {
         return Err(InputError::new(
             "map.y.parameter",
@@ -307,14 +327,14 @@ pub fn string_stability_map(
     let (rows, threads) = parallel_rows(
         y.values.len(),
         params.threads,
-        || StringWorkspace::new(model, base),
-        |iy, ws: &mut StringWorkspace| -> Result<Vec<StabilityAssessment>, Error> {
+        || EigenWorkspace::new(model, base),
+        |iy, ws: &mut EigenWorkspace| -> Result<Vec<StabilityAssessment>, Error> {
             let mut row = Vec::with_capacity(nx);
             for &xv in &x.values {
                 let mut d = *base;
-                x.parameter.set(&mut d, xv)?;
-                y.parameter.set(&mut d, y.values[iy])?;
-                let limit = model_resolution_limit(model, d.speed);
+                model.set(x.parameter, &mut d, xv)?;
+                model.set(y.parameter, &mut d, y.values[iy])?;
+                let limit = model.resolution_limit(&d);
                 let ev = ws.eigenvalues(model, &d, params.eigen)?;
                 row.push(assess_resolved(ev, &params.verdict, limit));
             }
@@ -329,46 +349,38 @@ pub fn string_stability_map(
     })
 }
 
-/// The fast path of [`string_stability_map`] when one axis is the friction (μh̄ or p), the
-/// kernel is `SmallDense` and the model's friction is rank one along it: every line of the map
-/// along that axis shares one Hessenberg reduction (`solve::small_eigenvalues::RankOneLine`).
-/// `None` when it does not apply.
-fn line_map(
-    model: &MovingStringModel,
-    base: &MovingStringData,
-    x: &GridAxis,
-    y: &GridAxis,
+/// The fast path of [`stability_map`] when one axis is a parameter along which the stiffness is
+/// affine and rank one (`LinearizedModel::rank_one`: the string's friction, the plate's pad
+/// friction and stiffness) and the kernel is `SmallDense`: every line of the map along that axis
+/// shares one Hessenberg reduction (`solve::small_eigenvalues::RankOneLine`). `None` when it
+/// does not apply.
+fn line_map<Mo: LinearizedModel>(
+    model: &Mo,
+    base: &Mo::Data,
+    x: &GridAxis<Mo::Parameter>,
+    y: &GridAxis<Mo::Parameter>,
     params: &StabilityMapParams,
-) -> Result<Option<StabilityMap>, Error> {
+) -> Result<Option<StabilityMap<Mo::Parameter>>, Error> {
     use crate::solve::small_eigenvalues::RankOneLine;
-    let is_friction = |p: StringParameter| {
-        matches!(
-            p,
-            StringParameter::Friction | StringParameter::ControlParameter
-        )
-    };
     if params.eigen.kernel != EigenKernel::SmallDense || params.eigen.compute_eigenvectors {
         return Ok(None);
     }
-    let (line_axis, other, control_is_y) = if is_friction(y.parameter) {
+    let (line_axis, other, control_is_y) = if model.rank_one(base, y.parameter).is_some() {
         (y, x, true)
-    } else if is_friction(x.parameter) {
+    } else if model.rank_one(base, x.parameter).is_some() {
         (x, y, false)
     } else {
         return Ok(None);
     };
-    if model.friction_rank_one(base, line_axis.parameter).is_none() {
-        return Ok(None);
-    }
     let n_lines = other.values.len();
     let n_points = line_axis.values.len();
     // Every point's data must be valid (the same checks as the point-by-point path).
     for &o in &other.values {
         let mut d = *base;
-        other.parameter.set(&mut d, o)?;
+        model.set(other.parameter, &mut d, o)?;
         for &t in &line_axis.values {
             let mut e = d;
-            line_axis.parameter.set(&mut e, t)?;
+            model.set(line_axis.parameter, &mut e, t)?;
         }
     }
     let (lines, threads) = parallel_rows(
@@ -377,10 +389,10 @@ fn line_map(
         || (),
         |il, _ws: &mut ()| -> Result<Vec<StabilityAssessment>, Error> {
             let mut d = *base;
-            other.parameter.set(&mut d, other.values[il])?;
-            line_axis.parameter.set(&mut d, 0.0)?;
-            let at = || describe(&d);
-            let limit = model_resolution_limit(model, d.speed);
+            model.set(other.parameter, &mut d, other.values[il])?;
+            model.set(line_axis.parameter, &mut d, 0.0)?;
+            let at = || model.describe(&d);
+            let limit = model.resolution_limit(&d);
             let system = model.system(&d)?;
             let mut solver = QuadraticEigenSolver::new(system.mass.as_ref(), params.eigen)
                 .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
@@ -390,8 +402,13 @@ fn line_map(
                     system.stiffness_matrix().as_ref(),
                 )
                 .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
-            let Some((mut r, s, coef)) = model.friction_rank_one(&d, line_axis.parameter) else {
-                unreachable!("checked above")
+            let Some((mut r, s, coef)) = model.rank_one(&d, line_axis.parameter) else {
+                return Err(InputError::new(
+                    format!("map.{}", line_axis.parameter.key()),
+                    at(),
+                    "a point where the stiffness is rank one along the axis",
+                )
+                .into());
             };
             let n = r.len();
             solver.solve_mass(&mut r);

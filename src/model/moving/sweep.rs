@@ -6,17 +6,17 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::model::moving::branches::{track_branches, EigenBranches};
-use crate::model::moving::resolution::model_resolution_limit;
+use crate::model::moving::linearized::LinearizedModel;
 use crate::model::moving::stability::{assess_resolved, StabilityAssessment, VerdictParams};
-use crate::model::moving::stability_map::{parallel_rows, GridAxis, StringWorkspace};
+use crate::model::moving::stability_map::{parallel_rows, EigenWorkspace, GridAxis};
 use crate::model::moving::string_data::MovingStringData;
 use crate::model::moving::string_model::MovingStringModel;
 use crate::solve::quadratic_eigen::QuadraticEigenParams;
 
 /// The result of a sweep.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Sweep {
-    pub axis: GridAxis,
+pub struct Sweep<P = crate::model::moving::string_data::StringParameter> {
+    pub axis: GridAxis<P>,
     /// The eigenvalues at every point, in the solver's order ([Re, Im] pairs in JSON).
     #[serde(serialize_with = "crate::model::moving::serialize_complex_rows")]
     pub spectra: Vec<Vec<c64>>,
@@ -25,7 +25,7 @@ pub struct Sweep {
     pub branches: EigenBranches,
 }
 
-/// Sweeps `axis` from `base` (every point parallel, deterministic).
+/// Sweeps `axis` of the string model from `base` (every point parallel, deterministic).
 pub fn string_sweep(
     model: &MovingStringModel,
     base: &MovingStringData,
@@ -34,17 +34,29 @@ pub fn string_sweep(
     verdict: &VerdictParams,
     threads: usize,
 ) -> Result<Sweep, Error> {
+    sweep(model, base, axis, eigen, verdict, threads)
+}
+
+/// Sweeps `axis` of any linearized model from `base` (every point parallel, deterministic).
+pub fn sweep<Mo: LinearizedModel>(
+    model: &Mo,
+    base: &Mo::Data,
+    axis: &GridAxis<Mo::Parameter>,
+    eigen: QuadraticEigenParams,
+    verdict: &VerdictParams,
+    threads: usize,
+) -> Result<Sweep<Mo::Parameter>, Error> {
     verdict.validate()?;
-    base.validate()?;
+    model.validate_data(base)?;
     let (points, _) = parallel_rows(
         axis.values.len(),
         threads,
-        || StringWorkspace::new(model, base),
-        |i, ws: &mut StringWorkspace| -> Result<(Vec<c64>, StabilityAssessment), Error> {
+        || EigenWorkspace::new(model, base),
+        |i, ws: &mut EigenWorkspace| -> Result<(Vec<c64>, StabilityAssessment), Error> {
             let mut d = *base;
-            axis.parameter.set(&mut d, axis.values[i])?;
+            model.set(axis.parameter, &mut d, axis.values[i])?;
             let ev = ws.eigenvalues(model, &d, eigen)?.to_vec();
-            let a = assess_resolved(&ev, verdict, model_resolution_limit(model, d.speed));
+            let a = assess_resolved(&ev, verdict, model.resolution_limit(&d));
             Ok((ev, a))
         },
     )?;

@@ -1,0 +1,109 @@
+//! What the sweeps and maps need of a linearized moving-continuum model: assemble
+//! M q̈ + C q̇ + K q = 0 at a data point, set one parameter, and, when the stiffness is affine and
+//! rank one along a parameter (friction, pad stiffness), say so for the shared-Hessenberg fast
+//! path. The string (`string_model`) and the rotating plate (`plate`) implement it, so one map
+//! and one sweep driver serve both.
+
+use crate::error::Error;
+use crate::model::moving::resolution::model_resolution_limit;
+use crate::model::moving::stability_map::AxisParameter;
+use crate::model::moving::string_data::{MovingStringData, StringParameter};
+use crate::model::moving::string_model::MovingStringModel;
+use crate::model::moving::system::MovingSystem;
+
+/// A linearized model whose stability a sweep or a map reads.
+pub trait LinearizedModel: Sync {
+    /// The data of one point (every parameter a sweep or map may vary).
+    type Data: Copy + Send + Sync;
+    /// The parameters that sweeps and maps vary.
+    type Parameter: AxisParameter + Send + Sync;
+
+    /// Checks a point's data.
+    fn validate_data(&self, data: &Self::Data) -> Result<(), Error>;
+    /// Sets `parameter` to `value` in `data` (validated).
+    fn set(
+        &self,
+        parameter: Self::Parameter,
+        data: &mut Self::Data,
+        value: f64,
+    ) -> Result<(), Error>;
+    /// The coordinates' names (their number is the system's dimension).
+    fn coordinates(&self, data: &Self::Data) -> Vec<String>;
+    /// Assembles the system at `data` into `out` (shaped by `coordinates`).
+    fn assemble_into(&self, data: &Self::Data, out: &mut MovingSystem) -> Result<(), Error>;
+    /// The assembled system at `data`.
+    fn system(&self, data: &Self::Data) -> Result<MovingSystem, Error> {
+        let mut s = MovingSystem::zeros(self.coordinates(data));
+        self.assemble_into(data, &mut s)?;
+        Ok(s)
+    }
+    /// A number that changes whenever the mass matrix does (a solver refactors M then).
+    fn mass_key(&self, data: &Self::Data) -> f64;
+    /// K_total(t) = K_total(0) + t · coefficient · r sᵀ along `parameter`, as (r, s,
+    /// coefficient), when the stiffness is affine and rank one along it; `None` otherwise.
+    fn rank_one(
+        &self,
+        data: &Self::Data,
+        parameter: Self::Parameter,
+    ) -> Option<(Vec<f64>, Vec<f64>, f64)>;
+    /// The resolution limit ω_res of the verdicts (`resolution.rs`; ∞: every eigenvalue).
+    fn resolution_limit(&self, data: &Self::Data) -> f64;
+    /// A short description of the point for error messages.
+    fn describe(&self, data: &Self::Data) -> String;
+}
+
+impl LinearizedModel for MovingStringModel {
+    type Data = MovingStringData;
+    type Parameter = StringParameter;
+
+    fn validate_data(&self, data: &MovingStringData) -> Result<(), Error> {
+        Ok(data.validate()?)
+    }
+
+    fn set(
+        &self,
+        parameter: StringParameter,
+        data: &mut MovingStringData,
+        value: f64,
+    ) -> Result<(), Error> {
+        Ok(parameter.set(data, value)?)
+    }
+
+    fn coordinates(&self, data: &MovingStringData) -> Vec<String> {
+        MovingStringModel::coordinates(self, data)
+    }
+
+    fn assemble_into(&self, data: &MovingStringData, out: &mut MovingSystem) -> Result<(), Error> {
+        Ok(MovingStringModel::assemble_into(self, data, out)?)
+    }
+
+    fn system(&self, data: &MovingStringData) -> Result<MovingSystem, Error> {
+        Ok(MovingStringModel::system(self, data)?)
+    }
+
+    fn mass_key(&self, data: &MovingStringData) -> f64 {
+        data.oscillator.map_or(0.0, |o| o.mass)
+    }
+
+    fn rank_one(
+        &self,
+        data: &MovingStringData,
+        parameter: StringParameter,
+    ) -> Option<(Vec<f64>, Vec<f64>, f64)> {
+        if !matches!(
+            parameter,
+            StringParameter::Friction | StringParameter::ControlParameter
+        ) {
+            return None;
+        }
+        self.friction_rank_one(data, parameter)
+    }
+
+    fn resolution_limit(&self, data: &MovingStringData) -> f64 {
+        model_resolution_limit(self, data.speed)
+    }
+
+    fn describe(&self, data: &MovingStringData) -> String {
+        crate::model::moving::stability_map::describe(data)
+    }
+}
