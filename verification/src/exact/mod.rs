@@ -13,10 +13,15 @@
 //! - `thick_string_galerkin`, `thick_string_continuum`: the thick string with friction (Hetzler
 //!   2009, §4.2.2): an independent sine-Galerkin model (closed-form integrals, its own
 //!   eigensolver) and the continuum characteristic function with the jump conditions at ā.
+//! - `plate_annulus` (with `bessel`): the natural frequencies of the annular Kirchhoff plate clamped
+//!   at the inner edge or at the centre (Hetzler 2009, §4.1; Leissa, Vibration of Plates, ch. 2):
+//!   the Bessel-function characteristic determinants, derived there.
 
+pub mod bessel;
 pub mod coulomb_friction;
 pub mod loaded_block;
 pub mod moving_string;
+pub mod plate_annulus;
 pub mod rod_constant_data;
 pub mod rod_paper;
 pub mod signorini_bar;
