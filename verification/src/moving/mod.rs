@@ -13,6 +13,8 @@
 //! | `moving_time_check` | [`cases::time_check`] | every kind of verdict confirmed by time integration: observed growth rate = max Re λ |
 //! | `moving_extremes` | [`cases::extremes`] | v̄ → 1, k̄_p → 10¹⁵, undamped gyroscopic–circulatory systems, near-defective eigenvalues |
 //! | `moving_map` | [`cases::map`] | the 200 × 200 map, deterministic, every point checked against faer, boundaries converged in N |
+//! | `moving_plate` | [`cases::plate::case`] | the rotating plate: frequencies against the Bessel characteristic equation with rates in h, the spatial-frame spectrum i(±ω − nΩ) to round-off, the Campbell diagram's tracked branches, G skew / K_T symmetric exactly where R_P / R_Q vanish |
+//! | `moving_plate_pad` | [`cases::plate::pad`] | the rotating plate with a stationary pad: stable below the critical speed (theorem) and destabilized above, friction flutter maps confirmed in time, the onset converged in the basis, k_p → ∞, N = 20 harmonics |
 
 pub mod bounds;
 pub mod cases;
@@ -37,6 +39,8 @@ use cases::flutter::FlutterCase;
 use cases::map::MapCase;
 use cases::oscillator::OscillatorCase;
 use cases::penalty::PenaltyCase;
+use cases::plate::case::PlateCase;
+use cases::plate::pad_format::PadCase;
 use cases::string::StringCase;
 use cases::symmetry::SymmetryCase;
 use cases::time_check::TimeCase;
@@ -70,6 +74,8 @@ impl Family for Moving {
             "moving_time_check",
             "moving_extremes",
             "moving_map",
+            "moving_plate",
+            "moving_plate_pad",
         ]
     }
 
@@ -84,6 +90,8 @@ impl Family for Moving {
             "moving_time_check" => checked(case, TimeCase::check).map(|_| ()),
             "moving_extremes" => checked(case, ExtremesCase::check).map(|_| ()),
             "moving_map" => checked(case, MapCase::check).map(|_| ()),
+            "moving_plate" => checked(case, PlateCase::check).map(|_| ()),
+            "moving_plate_pad" => checked(case, PadCase::check).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -119,6 +127,12 @@ impl Family for Moving {
             }
             "moving_map" => {
                 cases::map::run(&checked(case, MapCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_plate" => {
+                cases::plate::case::run(&checked(case, PlateCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_plate_pad" => {
+                cases::plate::pad::run(&checked(case, PadCase::check).map_err(e)?, ctx, report)
             }
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }

@@ -537,4 +537,50 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn pad_map_is_identical_for_any_thread_count_and_either_kernel_path() {
+        use crate::model::moving::stability_map::{stability_map, GridAxis, StabilityMapParams};
+        use crate::solve::quadratic_eigen::EigenKernel;
+        let m = model(Some(2));
+        let base = PlateData {
+            angular_speed: 0.0,
+            damping: 0.05,
+            pad: Some(PadData {
+                radius: 0.95,
+                angle: 0.2,
+                stiffness: 50.0,
+                friction: 0.0,
+            }),
+        };
+        let x = GridAxis::linspace(PlateParameter::AngularSpeed, 0.0, 3.0, 7).unwrap();
+        let y = GridAxis::linspace(PlateParameter::Friction, 0.0, 0.8, 6).unwrap();
+        let run = |threads, kernel| {
+            stability_map(
+                &m,
+                &base,
+                &x,
+                &y,
+                &StabilityMapParams {
+                    threads,
+                    eigen: QuadraticEigenParams {
+                        kernel,
+                        ..Default::default()
+                    },
+                    ..Default::default()
+                },
+            )
+            .unwrap()
+        };
+        let (a, b) = (
+            run(1, EigenKernel::SmallDense),
+            run(3, EigenKernel::SmallDense),
+        );
+        assert_eq!(a.points, b.points);
+        let f = run(2, EigenKernel::Faer);
+        for (p, q) in a.points.iter().zip(&f.points) {
+            assert_eq!(p.verdict, q.verdict);
+        }
+        assert!(a.points.iter().any(|p| p.verdict.is_unstable()));
+    }
 }

@@ -9,6 +9,7 @@ pub mod map;
 pub mod map_lines;
 pub mod oscillator;
 pub mod penalty;
+pub mod plate;
 pub mod string;
 pub mod symmetry;
 pub mod time_check;
