@@ -19,12 +19,19 @@ use crate::model::quasistatic::plane_output::PlaneSolution;
 use crate::model::quasistatic::rod_output::RodSolution;
 use crate::scene::common::scene_error;
 use crate::scene::dynamic::{DynamicScene, DynamicSceneFile};
-use crate::scene::moving::{DiscSceneResult, MovingScene, StringSceneResult};
+use crate::scene::moving::{DiscSceneResult, MovingScene, PlateSceneResult, StringSceneResult};
 use crate::scene::plane::{PlaneScene, PlaneSceneFile};
 use crate::scene::rod::{RodScene, RodSceneFile};
 
 /// The models a scene may name.
-pub const MODELS: [&str; 5] = ["rod", "plane", "dynamic", "moving_string", "disc_particle"];
+pub const MODELS: [&str; 6] = [
+    "rod",
+    "plane",
+    "dynamic",
+    "moving_string",
+    "disc_particle",
+    "rotating_plate",
+];
 
 /// A validated scene of any model.
 #[derive(Debug)]
@@ -35,7 +42,7 @@ pub enum Scene {
     Plane(Box<PlaneScene>),
     /// `model = "dynamic"`: an elastic body against a rigid foundation.
     Dynamic(Box<DynamicScene>),
-    /// `model = "moving_string"` or `"disc_particle"`: a moving continuum.
+    /// `model = "moving_string"`, `"disc_particle"` or `"rotating_plate"`: a moving continuum.
     Moving(MovingScene),
 }
 
@@ -48,6 +55,7 @@ pub enum Solution {
     Dynamic(DynamicSolution),
     MovingString(StringSceneResult),
     DiscParticle(DiscSceneResult),
+    RotatingPlate(Box<PlateSceneResult>),
 }
 
 impl Scene {
@@ -102,7 +110,7 @@ impl Scene {
                 let file: DynamicSceneFile = table.try_into().map_err(parse)?;
                 Scene::Dynamic(Box::new(DynamicScene::from_file(file)?))
             }
-            "moving_string" | "disc_particle" => {
+            "moving_string" | "disc_particle" | "rotating_plate" => {
                 Scene::Moving(MovingScene::from_table(table, source_name)?)
             }
             other => {
@@ -124,6 +132,7 @@ impl Scene {
             Scene::Dynamic(_) => "dynamic",
             Scene::Moving(MovingScene::String(_)) => "moving_string",
             Scene::Moving(MovingScene::Disc(_)) => "disc_particle",
+            Scene::Moving(MovingScene::Plate(_)) => "rotating_plate",
         }
     }
 
@@ -135,6 +144,7 @@ impl Scene {
             Scene::Dynamic(s) => &s.title,
             Scene::Moving(MovingScene::String(s)) => &s.title,
             Scene::Moving(MovingScene::Disc(s)) => &s.title,
+            Scene::Moving(MovingScene::Plate(s)) => &s.title,
         }
     }
 
@@ -146,6 +156,7 @@ impl Scene {
             Scene::Dynamic(s) => Solution::Dynamic(s.solve()?),
             Scene::Moving(MovingScene::String(s)) => Solution::MovingString(s.run()?),
             Scene::Moving(MovingScene::Disc(s)) => Solution::DiscParticle(s.run()?),
+            Scene::Moving(MovingScene::Plate(s)) => Solution::RotatingPlate(Box::new(s.run()?)),
         })
     }
 }
@@ -159,6 +170,7 @@ impl Solution {
             Solution::Dynamic(_) => "dynamic",
             Solution::MovingString(_) => "moving_string",
             Solution::DiscParticle(_) => "disc_particle",
+            Solution::RotatingPlate(_) => "rotating_plate",
         }
     }
 
@@ -191,13 +203,26 @@ impl Solution {
                 "disc particle: {:?} (max Re λ = {:.6e})",
                 r.point.assessment.verdict, r.point.assessment.max_real_part
             ),
+            Solution::RotatingPlate(r) => format!(
+                "rotating plate, {} eigenvalues at Ω = {}: {:?} (max Re λ = {:.6e}), lowest \
+                 critical speed {}",
+                r.eigenvalues.len(),
+                r.angular_speed,
+                r.assessment.verdict,
+                r.assessment.max_real_part,
+                r.harmonics
+                    .iter()
+                    .flat_map(|h| h.critical_speeds.first().copied())
+                    .min_by(f64::total_cmp)
+                    .map_or("(none: N = 0)".to_string(), |w| format!("{w:.6}"))
+            ),
         }
     }
 }
 
 /// The keys of the scene formats that hold a table (a `[section]` or an inline `{ … }`), or for
 /// the repeated ones an array of tables.
-const TABLE_KEYS: [&str; 24] = [
+const TABLE_KEYS: [&str; 26] = [
     "body",
     "body_force",
     "contact",
@@ -215,7 +240,9 @@ const TABLE_KEYS: [&str; 24] = [
     "mesh",
     "oscillator",
     "output",
+    "pad",
     "particle",
+    "plate",
     "rod",
     "solver",
     "stability",

@@ -20,8 +20,10 @@ pub mod bounds;
 pub mod cases;
 pub mod convergence;
 pub mod errors;
+pub mod plate_scene;
 pub mod plots;
 pub mod scene;
+pub mod scene_json;
 pub mod study;
 
 use std::path::Path;
@@ -139,7 +141,7 @@ impl Family for Moving {
     }
 
     fn models(&self) -> &'static [&'static str] {
-        &["moving_string", "disc_particle"]
+        &["moving_string", "disc_particle", "rotating_plate"]
     }
 
     fn write_scene(&self, scene: &Scene, source: &str, out: &Path) -> Result<String, String> {

@@ -89,11 +89,11 @@ pub fn root_locus(title: &str, b: &EigenBranches, chosen: &[usize]) -> Figure {
 
 /// The stability map: one marker series per verdict on a subsampled grid (≤ `max_side` per
 /// axis), plus the boundary of the unstable region (the first unstable y of every x column).
-pub fn map_figure(
+pub fn map_figure<P>(
     title: &str,
     x_label: &str,
     y_label: &str,
-    map: &StabilityMap,
+    map: &StabilityMap<P>,
     max_side: usize,
     log_y: bool,
 ) -> Figure {
@@ -142,7 +142,7 @@ pub fn map_figure(
 
 /// The boundary of a map: for every x, the smallest y whose verdict is unstable (skipped when
 /// none is).
-pub fn boundary(map: &StabilityMap) -> Vec<(f64, f64)> {
+pub fn boundary<P>(map: &StabilityMap<P>) -> Vec<(f64, f64)> {
     let nx = map.x.values.len();
     (0..nx)
         .filter_map(|ix| {

@@ -1,6 +1,6 @@
 //! `verify scene` for moving-continuum scenes (`model = "moving_string"` or `"disc_particle"`,
-//! format in `contactlab::scene::moving`): runs the analysed point, every sweep and the map, and
-//! writes into the output directory
+//! format in `contactlab::scene::moving`; `"rotating_plate"` in `plate_scene.rs`): runs the
+//! analysed point, every sweep and the map, and writes into the output directory
 //!
 //! - `eigenvalues.json`: the point's data, eigenvalues [Re, Im] (and eigenvectors when asked),
 //!   the verdict with its tolerance, the solver's statistics;
@@ -14,11 +14,11 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use contactlab::model::moving::stability::{StabilityAssessment, Verdict};
-use contactlab::model::moving::stability_map::StabilityMap;
+use contactlab::model::moving::stability::StabilityAssessment;
 use contactlab::scene::moving::{MovingScene, StringSceneResult};
 
 use crate::moving::plots::{loci_figures, map_figure, root_locus, upper_branches};
+use crate::moving::scene_json::{map_json, map_summary, sweep_json, unresolved_warning};
 use crate::plot::{write_panels_svg, write_svg, Figure, Series};
 
 #[derive(Serialize)]
@@ -31,16 +31,6 @@ struct PointJson<'a> {
     eigenvectors: Option<&'a Vec<Vec<[f64; 2]>>>,
     assessment: &'a StabilityAssessment,
     stats: &'a contactlab::solve::quadratic_eigen::QuadraticEigenStats,
-}
-
-#[derive(Serialize)]
-struct SweepJson<'a> {
-    parameter: &'static str,
-    values: &'a [f64],
-    verdicts: Vec<Verdict>,
-    max_real_part: Vec<f64>,
-    spectra: Vec<Vec<[f64; 2]>>,
-    branches: Vec<Vec<[f64; 2]>>,
 }
 
 /// Runs a moving scene and writes its files; returns a one-line summary.
@@ -77,26 +67,9 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
             )?;
             svg("spectrum.svg", &spectrum_figure(&title, &r))?;
             for (i, sw) in r.sweeps.iter().enumerate() {
-                let j = SweepJson {
-                    parameter: sw.axis.parameter.key(),
-                    values: &sw.axis.values,
-                    verdicts: sw.assessments.iter().map(|a| a.verdict).collect(),
-                    max_real_part: sw.assessments.iter().map(|a| a.max_real_part).collect(),
-                    spectra: sw
-                        .spectra
-                        .iter()
-                        .map(|s| s.iter().map(|l| [l.re, l.im]).collect())
-                        .collect(),
-                    branches: sw
-                        .branches
-                        .branches
-                        .iter()
-                        .map(|b| b.iter().map(|l| [l.re, l.im]).collect())
-                        .collect(),
-                };
                 write(
                     &format!("sweep_{i}.json"),
-                    crate::core::json_out::finite_json(&j, true)
+                    crate::core::json_out::finite_json(&sweep_json(sw), true)
                         .map_err(|e| format!("{source}: sweep_{i}.json: {e}"))?,
                 )?;
                 let chosen = upper_branches(&sw.branches, 8);
@@ -132,18 +105,10 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
                 r.eigenvalues.len(),
                 unresolved_warning(&r.assessment),
                 if r.sweeps.is_empty() { String::new() } else { format!(", {} sweep(s)", r.sweeps.len()) },
-                r.map.as_ref().map_or(String::new(), |m| format!(
-                    ", map {} × {}: {} stable, {} marginal, {} divergence, {} flutter ({} points with unstable unresolved eigenvalues: the basis's, not the verdict)",
-                    m.x.values.len(),
-                    m.y.values.len(),
-                    m.count(Verdict::Stable),
-                    m.count(Verdict::Marginal),
-                    m.count(Verdict::Divergence),
-                    m.count(Verdict::Flutter),
-                    m.count_unresolved()
-                ))
+                r.map.as_ref().map_or(String::new(), map_summary)
             ))
         }
+        MovingScene::Plate(p) => crate::moving::plate_scene::write_plate(p, source, out),
         MovingScene::Disc(d) => {
             let r = d.run().map_err(|e| format!("{source}: {e}"))?;
             write(
@@ -191,54 +156,6 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
                 r.sweeps.len()
             ))
         }
-    }
-}
-
-/// The discretization warning of a point: unstable eigenvalues above the resolution limit.
-fn unresolved_warning(a: &StabilityAssessment) -> String {
-    if !a.unresolved.is_present() {
-        return String::new();
-    }
-    format!(
-        "; warning: {} unstable eigenvalue(s) above the resolution limit ω_res = {:.4e} (|Im λ| from {:.4e} to {:.4e}, max Re λ = {:.3e}) — the basis's, not the string's: not part of the verdict; refine the basis to resolve them",
-        a.unresolved.count,
-        a.resolution_limit,
-        a.unresolved.frequency_from,
-        a.unresolved.frequency_to,
-        a.unresolved.max_real_part
-    )
-}
-
-#[derive(Serialize)]
-struct MapJson<'a> {
-    x_parameter: &'static str,
-    x: &'a [f64],
-    y_parameter: &'static str,
-    y: &'a [f64],
-    /// Row-major (point (ix, iy) at iy·nx + ix).
-    verdict: Vec<&'static str>,
-    max_real_part: Vec<f64>,
-    critical_eigenvalue: Vec<[f64; 2]>,
-    tolerance: Vec<f64>,
-    /// The number of unstable eigenvalues above the resolution limit (the warning layer).
-    unresolved_unstable: Vec<usize>,
-}
-
-fn map_json(m: &StabilityMap) -> MapJson<'_> {
-    MapJson {
-        x_parameter: m.x.parameter.key(),
-        x: &m.x.values,
-        y_parameter: m.y.parameter.key(),
-        y: &m.y.values,
-        verdict: m.points.iter().map(|a| a.verdict.name()).collect(),
-        max_real_part: m.points.iter().map(|a| a.max_real_part).collect(),
-        critical_eigenvalue: m
-            .points
-            .iter()
-            .map(|a| [a.critical_re, a.critical_im])
-            .collect(),
-        tolerance: m.points.iter().map(|a| a.tolerance).collect(),
-        unresolved_unstable: m.points.iter().map(|a| a.unresolved.count).collect(),
     }
 }
 

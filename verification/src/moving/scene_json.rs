@@ -1,0 +1,106 @@
+//! The JSON and summary pieces every moving scene writer shares (`scene.rs` for the string and
+//! the disc, `plate_scene.rs` for the plate): a sweep's `sweep_<i>.json`, a map's `map.json`, the
+//! map's verdict counts and a point's discretization warning, for any model's parameter type.
+
+use serde::Serialize;
+
+use contactlab::model::moving::stability::{StabilityAssessment, Verdict};
+use contactlab::model::moving::stability_map::{AxisParameter, StabilityMap};
+use contactlab::model::moving::sweep::Sweep;
+
+/// `sweep_<i>.json`.
+#[derive(Serialize)]
+pub struct SweepJson<'a> {
+    parameter: &'static str,
+    values: &'a [f64],
+    verdicts: Vec<Verdict>,
+    max_real_part: Vec<f64>,
+    spectra: Vec<Vec<[f64; 2]>>,
+    branches: Vec<Vec<[f64; 2]>>,
+}
+
+/// The JSON of a sweep of any model.
+pub fn sweep_json<P: AxisParameter>(sw: &Sweep<P>) -> SweepJson<'_> {
+    SweepJson {
+        parameter: sw.axis.parameter.key(),
+        values: &sw.axis.values,
+        verdicts: sw.assessments.iter().map(|a| a.verdict).collect(),
+        max_real_part: sw.assessments.iter().map(|a| a.max_real_part).collect(),
+        spectra: sw
+            .spectra
+            .iter()
+            .map(|s| s.iter().map(|l| [l.re, l.im]).collect())
+            .collect(),
+        branches: sw
+            .branches
+            .branches
+            .iter()
+            .map(|b| b.iter().map(|l| [l.re, l.im]).collect())
+            .collect(),
+    }
+}
+
+/// The discretization warning of a point: unstable eigenvalues above the resolution limit.
+pub fn unresolved_warning(a: &StabilityAssessment) -> String {
+    if !a.unresolved.is_present() {
+        return String::new();
+    }
+    format!(
+        "; warning: {} unstable eigenvalue(s) above the resolution limit ω_res = {:.4e} (|Im λ| from {:.4e} to {:.4e}, max Re λ = {:.3e}) — the basis's, not the string's: not part of the verdict; refine the basis to resolve them",
+        a.unresolved.count,
+        a.resolution_limit,
+        a.unresolved.frequency_from,
+        a.unresolved.frequency_to,
+        a.unresolved.max_real_part
+    )
+}
+
+/// The verdict counts of a map, for the summary line.
+pub fn map_summary<P>(m: &StabilityMap<P>) -> String {
+    format!(
+        ", map {} × {}: {} stable, {} marginal, {} divergence, {} flutter ({} points with \
+         unstable unresolved eigenvalues: the basis's, not the verdict)",
+        m.x.values.len(),
+        m.y.values.len(),
+        m.count(Verdict::Stable),
+        m.count(Verdict::Marginal),
+        m.count(Verdict::Divergence),
+        m.count(Verdict::Flutter),
+        m.count_unresolved()
+    )
+}
+
+/// `map.json`.
+#[derive(Serialize)]
+pub struct MapJson<'a> {
+    x_parameter: &'static str,
+    x: &'a [f64],
+    y_parameter: &'static str,
+    y: &'a [f64],
+    /// Row-major (point (ix, iy) at iy·nx + ix).
+    verdict: Vec<&'static str>,
+    max_real_part: Vec<f64>,
+    critical_eigenvalue: Vec<[f64; 2]>,
+    tolerance: Vec<f64>,
+    /// The number of unstable eigenvalues above the resolution limit (the warning layer).
+    unresolved_unstable: Vec<usize>,
+}
+
+/// The JSON of a map of any model.
+pub fn map_json<P: AxisParameter>(m: &StabilityMap<P>) -> MapJson<'_> {
+    MapJson {
+        x_parameter: m.x.parameter.key(),
+        x: &m.x.values,
+        y_parameter: m.y.parameter.key(),
+        y: &m.y.values,
+        verdict: m.points.iter().map(|a| a.verdict.name()).collect(),
+        max_real_part: m.points.iter().map(|a| a.max_real_part).collect(),
+        critical_eigenvalue: m
+            .points
+            .iter()
+            .map(|a| [a.critical_re, a.critical_im])
+            .collect(),
+        tolerance: m.points.iter().map(|a| a.tolerance).collect(),
+        unresolved_unstable: m.points.iter().map(|a| a.unresolved.count).collect(),
+    }
+}
