@@ -40,11 +40,13 @@ fn every_moving_case_parses_with_an_explanation() {
 #[test]
 fn the_timing_map_and_the_element_onsets_are_default_tier_and_the_rest_is_quick() {
     for c in moving_cases() {
-        // the map (its timing) and the finite-element onsets (14 s of eigenvalue bisections)
+        // the map (its timing), the finite-element onsets (14 s of eigenvalue bisections) and
+        // the plate pad's long time checks (20 s; its CI version is moving_plate_pad_quick)
         let expected = if [
             "moving_map",
             "moving_flutter_elements",
             "moving_flutter_patch",
+            "moving_plate_pad",
         ]
         .contains(&c.header.id.as_str())
         {

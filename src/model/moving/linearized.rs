@@ -6,10 +6,33 @@
 
 use crate::error::Error;
 use crate::model::moving::resolution::model_resolution_limit;
-use crate::model::moving::stability_map::AxisParameter;
 use crate::model::moving::string_data::{MovingStringData, StringParameter};
 use crate::model::moving::string_model::MovingStringModel;
 use crate::model::moving::system::MovingSystem;
+
+/// A parameter that sweeps and maps vary: its key as a scene writes it.
+pub trait AxisParameter: Copy + PartialEq + std::fmt::Debug + serde::Serialize {
+    /// The key (`speed`, `angular_speed`, …).
+    fn key(self) -> &'static str;
+}
+
+impl AxisParameter for StringParameter {
+    fn key(self) -> &'static str {
+        StringParameter::key(self)
+    }
+}
+
+/// A short description of a string data point for error messages.
+pub fn describe(data: &MovingStringData) -> String {
+    let mut s = format!("v̄ = {}, ᾱ = {}", data.speed, data.damping);
+    if let Some(o) = &data.oscillator {
+        s.push_str(&format!(
+            ", c̄ = {}, m̄ = {}, ā = {}, μh̄ = {}, {:?}",
+            o.stiffness, o.mass, o.position, o.friction, o.contact
+        ));
+    }
+    s
+}
 
 /// A linearized model whose stability a sweep or a map reads.
 pub trait LinearizedModel: Sync {
@@ -104,6 +127,6 @@ impl LinearizedModel for MovingStringModel {
     }
 
     fn describe(&self, data: &MovingStringData) -> String {
-        crate::model::moving::stability_map::describe(data)
+        describe(data)
     }
 }

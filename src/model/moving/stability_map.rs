@@ -17,6 +17,7 @@ use serde::Serialize;
 
 use crate::error::{Error, InputError, SolveError};
 use crate::model::moving::linearized::LinearizedModel;
+pub use crate::model::moving::linearized::{describe, AxisParameter};
 use crate::model::moving::stability::{
     assess, assess_resolved, StabilityAssessment, Verdict, VerdictParams,
 };
@@ -24,18 +25,6 @@ use crate::model::moving::string_data::{MovingStringData, StringParameter};
 use crate::model::moving::string_model::MovingStringModel;
 use crate::model::moving::system::MovingSystem;
 use crate::solve::quadratic_eigen::{EigenKernel, QuadraticEigenParams, QuadraticEigenSolver};
-
-/// A parameter that sweeps and maps vary: its key as a scene writes it.
-pub trait AxisParameter: Copy + PartialEq + std::fmt::Debug + Serialize {
-    /// The key (`speed`, `angular_speed`, …).
-    fn key(self) -> &'static str;
-}
-
-impl AxisParameter for StringParameter {
-    fn key(self) -> &'static str {
-        StringParameter::key(self)
-    }
-}
 
 /// The values of one parameter along one axis of a map or sweep.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -276,18 +265,6 @@ impl EigenWorkspace {
             .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
         Ok(&self.eigenvalues)
     }
-}
-
-/// A short description of the data point for error messages.
-pub fn describe(data: &MovingStringData) -> String {
-    let mut s = format!("v̄ = {}, ᾱ = {}", data.speed, data.damping);
-    if let Some(o) = &data.oscillator {
-        s.push_str(&format!(
-            ", c̄ = {}, m̄ = {}, ā = {}, μh̄ = {}, {:?}",
-            o.stiffness, o.mass, o.position, o.friction, o.contact
-        ));
-    }
-    s
 }
 
 /// The stability map of the string model over the grid x × y, every other parameter from `base`.

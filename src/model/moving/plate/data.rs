@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::InputError;
-use crate::model::moving::stability_map::AxisParameter;
+use crate::model::moving::linearized::AxisParameter;
 
 /// The condition at the outer edge r = b (the inner edge r = a is clamped; for a = 0 the paper's
 /// centre conditions w(0) = 0, w_r(0) = 0 hold).

@@ -1,5 +1,5 @@
 //! The rotating annular Kirchhoff plate of Hetzler (2009) §4.1, and a stationary friction pad on
-//! it (disc-brake squeal, spinning saw blades); restated in `docs/moving_continua.md` §7.
+//! it (disc-brake squeal, spinning saw blades); restated in `docs/moving_continua.md` (§4.1).
 //!
 //! - [`data`]: the plate (a, b, D, ρh, ν, h, outer edge), the pad and the parameters maps vary.
 //! - [`radial`], [`angular`]: the Ritz bases (Hermite cubic elements in r; Fourier harmonics in

@@ -16,7 +16,7 @@ use serde::Serialize;
 
 use contactlab::model::moving::linearized::LinearizedModel;
 use contactlab::model::moving::plate::{PlateData, PlateParameter, RotatingPlateModel};
-use contactlab::model::moving::stability::Verdict;
+use contactlab::model::moving::stability::{StabilityAssessment, Verdict};
 use contactlab::model::moving::stability_map::{
     stability_map, GridAxis, StabilityMap, StabilityMapParams,
 };
@@ -28,7 +28,7 @@ use crate::core::report::case_report::CaseReport;
 use crate::moving::cases::plate::common::{
     lowest_critical_speed, plate_model, positive_definite, spectrum,
 };
-use crate::moving::cases::plate::pad_format::PadCase;
+use crate::moving::cases::plate::pad_format::{PadCase, TimeCheckSection};
 use crate::moving::cases::plate::pad_limits;
 use crate::moving::plots::verdict_color;
 use crate::moving::study::{check_growth, GrowthCheck};
@@ -39,6 +39,7 @@ use crate::plot::{Figure, Series};
 pub struct TimeRow {
     pub angular_speed: f64,
     pub friction: f64,
+    pub stiffness: f64,
     pub verdict: Verdict,
     pub check: GrowthCheck,
 }
@@ -49,6 +50,7 @@ struct Data {
     critical_speed: f64,
     critical_harmonic: usize,
     spring_onsets: Vec<(f64, f64)>,
+    spring_time_checks: Vec<TimeRow>,
     time_checks: Vec<TimeRow>,
     limits: pad_limits::LimitsData,
 }
@@ -87,13 +89,50 @@ fn map_params(kernel: EigenKernel) -> StabilityMapParams {
     }
 }
 
+/// Integrates the system at `d` (assessed as `a`) from a pseudo-random state (`seed`) long
+/// enough for the critical mode to dominate: e^{-separation} of the others' share is left after
+/// separation / gap (gap: max Re λ minus the largest real part below it by more than the check's
+/// tolerance — modes within the tolerance may share the lead), within [duration, max_duration].
+fn time_check(
+    model: &RotatingPlateModel,
+    d: &PlateData,
+    a: &StabilityAssessment,
+    t: &TimeCheckSection,
+    seed: u64,
+) -> Result<TimeRow, String> {
+    let system = model.system(d).map_err(|e| e.to_string())?;
+    let ev = spectrum(model, d, false)?.eigenvalues;
+    let within = t.absolute_tolerance + t.relative_tolerance * a.max_real_part.abs();
+    let next = ev
+        .iter()
+        .map(|l| l.re)
+        .filter(|&r| r < a.max_real_part - within)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let gap = a.max_real_part - next;
+    let duration = (t.separation / gap).clamp(t.duration, t.max_duration);
+    let (check, _) = check_growth(&system, a.max_real_part, a.spectral_scale, duration, seed)?;
+    Ok(TimeRow {
+        angular_speed: d.angular_speed,
+        friction: d.pad.map_or(0.0, |p| p.friction),
+        stiffness: d.pad.map_or(0.0, |p| p.stiffness),
+        verdict: a.verdict,
+        check,
+    })
+}
+
+/// |σ_obs − max Re λ| beyond the check's tolerance (> 0: a miss).
+fn miss(r: &TimeRow, t: &TimeCheckSection) -> f64 {
+    (r.check.observed - r.check.predicted).abs()
+        - (t.absolute_tolerance + t.relative_tolerance * r.check.predicted.abs())
+}
+
 /// Runs the case.
 pub fn run(case: &PadCase, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
     let plate = case.plate.properties();
     let b = case.basis;
     let model = plate_model(plate, b.harmonics, b.elements, Some(b.radial_modes))?;
     let (omega_c, n_c) = lowest_critical_speed(&plate, b.elements, b.harmonics)?;
-    let spring_onsets = spring(case, &model, omega_c, n_c, ctx, report)?;
+    let (spring_onsets, spring_time_checks) = spring(case, &model, omega_c, n_c, ctx, report)?;
     let time_checks = friction(case, &model, ctx, report)?;
     let limits = pad_limits::run(case, &model, omega_c, ctx, report)?;
     ctx.write_data(
@@ -102,11 +141,15 @@ pub fn run(case: &PadCase, ctx: &RunContext, report: &mut CaseReport) -> Result<
             critical_speed: omega_c,
             critical_harmonic: n_c,
             spring_onsets,
+            spring_time_checks,
             time_checks,
             limits,
         },
     )
 }
+
+/// Per k_p the first unstable Ω (NaN: none), and the time checks of the map's verdict kinds.
+type SpringResult = (Vec<(f64, f64)>, Vec<TimeRow>);
 
 /// The frictionless pad: stable below Ω_c (theorem), destabilized above (both gated).
 fn spring(
@@ -116,7 +159,7 @@ fn spring(
     n_c: usize,
     ctx: &RunContext,
     report: &mut CaseReport,
-) -> Result<Vec<(f64, f64)>, String> {
+) -> Result<SpringResult, String> {
     let s = case.spring;
     let base = PlateData {
         angular_speed: 0.0,
@@ -214,10 +257,63 @@ fn spring(
         ],
         "Thomson–Tait: positive definite stiffness + any skew G, no damping, no circulatory force ⇒ stable; a stationary spring on a rotating disc destabilizes above the critical speed (Iwan & Moeller)",
     ));
+    // every kind of verdict of this map confirmed in time: its first point of each kind
+    let mut kinds = Vec::new();
+    for v in Verdict::ALL {
+        if let Some(i) = map.points.iter().position(|a| a.verdict == v) {
+            let mut d = base;
+            d.angular_speed = x.values[i % nx];
+            if let Some(p) = d.pad.as_mut() {
+                p.stiffness = y.values[i / nx];
+            }
+            kinds.push(time_check(
+                model,
+                &d,
+                &map.points[i],
+                &case.time_check,
+                500 + i as u64,
+            )?);
+        }
+    }
+    let t = &case.time_check;
+    let failing = kinds
+        .iter()
+        .filter(|r| miss(r, t).is_nan() || miss(r, t) > 0.0)
+        .count();
+    report.gates.push(GateVerdict::from_checks(
+        format!(
+            "every kind of verdict of the (Ω, k_p) map confirmed by RK4: {}",
+            kinds
+                .iter()
+                .map(|r| format!(
+                    "{} at (Ω, k_p) = ({:.4}, {}): max Re λ = {:.3e}, observed {:.3e}",
+                    r.verdict.name(),
+                    r.angular_speed,
+                    r.stiffness,
+                    r.check.predicted,
+                    r.check.observed
+                ))
+                .collect::<Vec<_>>()
+                .join("; ")
+        ),
+        "independent",
+        vec![
+            Check::at_most(
+                &format!(
+                    "points outside {} + {}·|max Re λ|",
+                    t.absolute_tolerance, t.relative_tolerance
+                ),
+                failing as f64,
+                0.0,
+            ),
+            Check::at_least("kinds of verdict checked", kinds.len() as f64, 2.0),
+        ],
+        "the first point of each verdict in the map, integrated from a pseudo-random state",
+    ));
     let f = verdict_figure("frictionless pad: verdicts over (Ω, k_p)", "Ω", "k_p", &map)
         .vertical_line(omega_c, "Ω_c = min ω_{n,0}/n");
     ctx.plot(report, "pad_spring_map", &f)?;
-    Ok(onsets)
+    Ok((onsets, kinds))
 }
 
 /// The (Ω, μ) map with damping: lines against faer, and a coarse grid in time.
@@ -288,33 +384,7 @@ fn friction(
         if let Some(p) = d.pad.as_mut() {
             p.friction = ty.values[i / nx];
         }
-        let system = model.system(&d).map_err(|e| e.to_string())?;
-        // the run must outlast the transient of the other modes: e^{-separation} of their
-        // share is left after duration ≥ separation / gap (gap: max Re λ minus the largest
-        // real part below it by more than the check's tolerance — modes within the tolerance
-        // may share the lead), within [duration, max_duration]
-        let ev = spectrum(model, &d, false)?.eigenvalues;
-        let within = t.absolute_tolerance + t.relative_tolerance * a.max_real_part.abs();
-        let next = ev
-            .iter()
-            .map(|l| l.re)
-            .filter(|&r| r < a.max_real_part - within)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let gap = a.max_real_part - next;
-        let duration = (t.separation / gap).clamp(t.duration, t.max_duration);
-        let (check, _) = check_growth(
-            &system,
-            a.max_real_part,
-            a.spectral_scale,
-            duration,
-            1000 + i as u64,
-        )?;
-        rows.push(TimeRow {
-            angular_speed: d.angular_speed,
-            friction: ty.values[i / nx],
-            verdict: a.verdict,
-            check,
-        });
+        rows.push(time_check(model, &d, a, &t, 1000 + i as u64)?);
     }
     let miss = |r: &TimeRow| {
         (r.check.observed - r.check.predicted).abs()
