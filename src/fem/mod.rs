@@ -1,5 +1,6 @@
-//! Finite elements: quadrature, P1 elements on intervals, error norms.
+//! Finite elements: quadrature, P1 elements on intervals, Hermite cubic shapes, error norms.
 
+pub mod hermite;
 pub mod norms;
 pub mod p1_interval;
 pub mod quadrature;

@@ -39,21 +39,8 @@ fn local_shapes(kind: ElementKind, h: f64, t: f64) -> ([f64; 4], [f64; 4]) {
     match kind {
         ElementKind::P1 => ([1.0 - t, t, 0.0, 0.0], [-1.0 / h, 1.0 / h, 0.0, 0.0]),
         ElementKind::Hermite => {
-            let (t2, t3) = (t * t, t * t * t);
-            (
-                [
-                    1.0 - 3.0 * t2 + 2.0 * t3,
-                    h * (t - 2.0 * t2 + t3),
-                    3.0 * t2 - 2.0 * t3,
-                    h * (t3 - t2),
-                ],
-                [
-                    (6.0 * t2 - 6.0 * t) / h,
-                    1.0 - 4.0 * t + 3.0 * t2,
-                    (6.0 * t - 6.0 * t2) / h,
-                    3.0 * t2 - 2.0 * t,
-                ],
-            )
+            let [value, slope, _] = crate::fem::hermite::hermite_shapes(h, t);
+            (value, slope)
         }
     }
 }

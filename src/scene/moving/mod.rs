@@ -129,9 +129,9 @@ pub use plate::{
     RotatingPlateSceneFile,
 };
 pub use plate_run::{HarmonicWaves, PlateSceneResult};
-pub use sections::{axis_values, AxisSection, StabilitySection};
+pub use sections::{axis_values, AxisSection, MapSection, StabilitySection};
 pub use string::{
-    DiscretizationSection, MapSection, MovingStringScene, MovingStringSceneFile, OscillatorSection,
+    DiscretizationSection, MovingStringScene, MovingStringSceneFile, OscillatorSection,
     StringSceneResult, StringSection,
 };
 

@@ -15,8 +15,9 @@ use crate::model::moving::plate::{
 };
 use crate::model::moving::stability::VerdictParams;
 use crate::model::moving::stability_map::{resolve_threads, GridAxis};
-use crate::scene::moving::sections::{axis_values, verdict_params, AxisSection, StabilitySection};
-use crate::scene::moving::string::MapSection;
+use crate::scene::moving::sections::{
+    axis_values, sweeps_and_map, verdict_params, AxisSection, MapSection, StabilitySection,
+};
 use crate::solve::quadratic_eigen::EigenKernel;
 
 /// `[plate]`.
@@ -252,26 +253,7 @@ impl RotatingPlateScene {
             }
             Ok(GridAxis { parameter, values })
         };
-        let mut sweeps = Vec::new();
-        for (i, s) in f.sweep.iter().enumerate() {
-            sweeps.push(check_axis(&format!("sweep[{i}]"), s)?);
-        }
-        let map = match &f.map {
-            None => None,
-            Some(m) => {
-                let x = check_axis("map.x", &m.x)?;
-                let y = check_axis("map.y", &m.y)?;
-                if x.parameter == y.parameter {
-                    return Err(InputError::new(
-                        "map.y.parameter",
-                        &m.y.parameter,
-                        format!("a parameter other than map.x.parameter = {}", m.x.parameter),
-                    )
-                    .into());
-                }
-                Some((x, y))
-            }
-        };
+        let (sweeps, map) = sweeps_and_map(&f.sweep, f.map.as_ref(), check_axis)?;
         Self::check_memory(&f, radial, dim, &sweeps, map.as_ref())?;
         // M is positive definite for every valid plate: a solver failure here means numbers
         // beyond the range of doubles (e.g. the mass of the slope functions ∝ ρh b⁴)

@@ -3,8 +3,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::InputError;
+use crate::error::{Error, InputError};
+use crate::model::moving::linearized::AxisParameter;
 use crate::model::moving::stability::VerdictParams;
+use crate::model::moving::stability_map::GridAxis;
 use crate::solve::quadratic_eigen::EigenKernel;
 
 /// `[stability]`.
@@ -36,6 +38,45 @@ pub struct AxisSection {
 
 fn linear() -> String {
     "linear".into()
+}
+
+/// `[map]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MapSection {
+    pub x: AxisSection,
+    pub y: AxisSection,
+}
+
+/// Every `[[sweep]]` and the `[map]` checked into axes by `check_axis` (which names the field
+/// it is given: `sweep[i]`, `map.x`, `map.y`); the map's two parameters must differ.
+#[allow(clippy::type_complexity)]
+pub fn sweeps_and_map<P: AxisParameter>(
+    sweep: &[AxisSection],
+    map: Option<&MapSection>,
+    check_axis: impl Fn(&str, &AxisSection) -> Result<GridAxis<P>, Error>,
+) -> Result<(Vec<GridAxis<P>>, Option<(GridAxis<P>, GridAxis<P>)>), Error> {
+    let mut sweeps = Vec::new();
+    for (i, s) in sweep.iter().enumerate() {
+        sweeps.push(check_axis(&format!("sweep[{i}]"), s)?);
+    }
+    let map = match map {
+        None => None,
+        Some(m) => {
+            let x = check_axis("map.x", &m.x)?;
+            let y = check_axis("map.y", &m.y)?;
+            if x.parameter == y.parameter {
+                return Err(InputError::new(
+                    "map.y.parameter",
+                    &m.y.parameter,
+                    format!("a parameter other than map.x.parameter = {}", m.x.parameter),
+                )
+                .into());
+            }
+            Some((x, y))
+        }
+    };
+    Ok((sweeps, map))
 }
 
 /// The values of an axis: `points` values from `from` to `to`, equally or geometrically spaced.

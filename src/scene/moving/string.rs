@@ -17,7 +17,9 @@ use crate::model::moving::string_model::{
     MovingStringModel, MovingStringParams, PenaltyCondensation, StringDiscretization,
 };
 use crate::model::moving::sweep::{string_sweep, Sweep};
-use crate::scene::moving::sections::{axis_values, verdict_params, AxisSection, StabilitySection};
+use crate::scene::moving::sections::{
+    axis_values, sweeps_and_map, verdict_params, AxisSection, MapSection, StabilitySection,
+};
 use crate::solve::quadratic_eigen::{EigenKernel, QuadraticEigenParams};
 
 /// `[string]`.
@@ -59,14 +61,6 @@ pub struct DiscretizationSection {
     pub elements: Option<usize>,
     #[serde(default)]
     pub condensation: PenaltyCondensation,
-}
-
-/// `[map]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MapSection {
-    pub x: AxisSection,
-    pub y: AxisSection,
 }
 
 /// The file format of a `moving_string` scene.
@@ -277,26 +271,7 @@ impl MovingStringScene {
             }
             Ok(GridAxis { parameter, values })
         };
-        let mut sweeps = Vec::new();
-        for (i, s) in f.sweep.iter().enumerate() {
-            sweeps.push(check_axis(&format!("sweep[{i}]"), s)?);
-        }
-        let map = match &f.map {
-            None => None,
-            Some(m) => {
-                let x = check_axis("map.x", &m.x)?;
-                let y = check_axis("map.y", &m.y)?;
-                if x.parameter == y.parameter {
-                    return Err(InputError::new(
-                        "map.y.parameter",
-                        &m.y.parameter,
-                        format!("a parameter other than map.x.parameter = {}", m.x.parameter),
-                    )
-                    .into());
-                }
-                Some((x, y))
-            }
-        };
+        let (sweeps, map) = sweeps_and_map(&f.sweep, f.map.as_ref(), check_axis)?;
         // memory: each sweep point keeps its 2·dim eigenvalues (and the tracked branches), each
         // map point its assessment; each worker a dense eigenproblem of order 2·dim
         let coords = dim as f64 + 2.0;

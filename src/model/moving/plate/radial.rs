@@ -26,6 +26,7 @@
 use faer::Mat;
 
 use crate::error::InputError;
+use crate::fem::hermite::hermite_shapes;
 use crate::fem::quadrature::GaussLegendre;
 use crate::model::moving::plate::data::OuterEdge;
 
@@ -47,32 +48,6 @@ pub struct RadialBasis {
     /// Global dof of (node, 0 = value | 1 = slope), `None` when constrained.
     dofs: Vec<[Option<usize>; 2]>,
     count: usize,
-}
-
-/// Hermite shape functions on an element of length h at local t ∈ [0, 1]:
-/// (value, d/dr, d²/dr²) of the four local functions (value, slope at the left; at the right).
-pub fn hermite_shapes(h: f64, t: f64) -> [[f64; 4]; 3] {
-    let (t2, t3) = (t * t, t * t * t);
-    [
-        [
-            1.0 - 3.0 * t2 + 2.0 * t3,
-            h * (t - 2.0 * t2 + t3),
-            3.0 * t2 - 2.0 * t3,
-            h * (t3 - t2),
-        ],
-        [
-            (6.0 * t2 - 6.0 * t) / h,
-            1.0 - 4.0 * t + 3.0 * t2,
-            (6.0 * t - 6.0 * t2) / h,
-            3.0 * t2 - 2.0 * t,
-        ],
-        [
-            (12.0 * t - 6.0) / (h * h),
-            (6.0 * t - 4.0) / h,
-            (6.0 - 12.0 * t) / (h * h),
-            (6.0 * t - 2.0) / h,
-        ],
-    ]
 }
 
 impl RadialBasis {
@@ -281,26 +256,9 @@ impl RadialBasis {
 
 #[cfg(test)]
 mod tests {
-    //! Setting: the radial basis on [0.2, 1]. Goal: the shapes are C¹ Hermite functions (values
-    //! and derivatives by finite differences), the constraints remove the right dofs, and every
+    //! Setting: the radial basis on [0.2, 1]. Goal: the constraints remove the right dofs, and every
     //! radial integral is exact on W = r², which the space contains.
     use super::*;
-
-    #[test]
-    fn hermite_derivatives_match_finite_differences() {
-        let h = 0.3;
-        let dt = 1e-6;
-        for &t in &[0.1, 0.45, 0.9] {
-            let s = hermite_shapes(h, t);
-            let (p, m) = (hermite_shapes(h, t + dt), hermite_shapes(h, t - dt));
-            for k in 0..4 {
-                let d1 = (p[0][k] - m[0][k]) / (2.0 * dt * h);
-                let d2 = (p[1][k] - m[1][k]) / (2.0 * dt * h);
-                assert!((d1 - s[1][k]).abs() < 1e-7, "d1 {k}");
-                assert!((d2 - s[2][k]).abs() < 1e-6, "d2 {k}");
-            }
-        }
-    }
 
     #[test]
     fn outer_edge_conditions_remove_the_right_dofs() {
