@@ -1,7 +1,9 @@
 //! The case catalogue: every file in verification/cases parses with its kind's format, has a
 //! unique id equal to its file name, an explanation, and a kind owned by one family (whose name it
-//! starts with); the quick tier holds the rod's paper cases.
+//! starts with); the quick tier holds the rod's paper cases; the default tier covers every family
+//! and every kind of claim of the full run, and the recorded run times keep the tiers in budget.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 
 use contactlab_verify::core::case::{Case, Tier};
@@ -59,6 +61,87 @@ fn quick_tier_holds_the_rod_convergence_cases() {
         "rod_extremes",
     ] {
         assert!(quick.contains(&id), "{id} must run in CI");
+    }
+}
+
+/// The gate kinds of every case in the committed full run (reports/<id>.json).
+fn committed_gate_kinds(cases: &[Case]) -> BTreeMap<String, BTreeSet<String>> {
+    let reports = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../reports");
+    let mut kinds = BTreeMap::new();
+    for c in cases {
+        let path = reports.join(format!("{}.json", c.header.id));
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
+            panic!("{}: {e} (regenerate reports/ with --full)", path.display())
+        });
+        let v: serde_json::Value = serde_json::from_str(&text).expect("a report");
+        let gates = v["gates"].as_array().cloned().unwrap_or_default();
+        kinds.insert(
+            c.header.id.clone(),
+            gates
+                .iter()
+                .filter_map(|g| g["kind"].as_str().map(String::from))
+                .collect(),
+        );
+    }
+    kinds
+}
+
+#[test]
+fn the_default_tier_covers_every_family_and_every_kind_of_claim_of_the_full_run() {
+    // Setting: `verify` (default tier) is what a newcomer runs first; the long studies are
+    // `--full` only. Goal: no model family and no kind of gate (rates, identities, extremes,
+    // exact and pinned values, audits, ...) is seen only by the full run.
+    let cases = cases();
+    let kinds = committed_gate_kinds(&cases);
+    let default: Vec<&Case> = cases
+        .iter()
+        .filter(|c| c.header.tier.runs_in(Tier::Default))
+        .collect();
+    let seen: BTreeSet<&String> = default
+        .iter()
+        .flat_map(|c| kinds[&c.header.id].iter())
+        .collect();
+    for (id, ks) in &kinds {
+        for k in ks {
+            assert!(
+                seen.contains(k),
+                "gate kind `{k}` (case {id}) only in the full tier"
+            );
+        }
+    }
+    for f in registry::FAMILIES {
+        assert!(
+            default.iter().any(|c| c.header.kind.starts_with(f.name())),
+            "family {} has no default-tier case",
+            f.name()
+        );
+    }
+    assert!(default
+        .iter()
+        .any(|c| contactlab_verify::robustness::KINDS.contains(&c.header.kind.as_str())));
+}
+
+#[test]
+fn the_recorded_run_times_keep_quick_under_20_s_and_default_under_90_s() {
+    // Setting: the run times of the committed full run (reports/<id>.timings.json, the 2-core
+    // reference machine). Goal: a case moved into a tier, or a case grown slower, cannot push the
+    // CI tier past 20 s or the default tier past 90 s unnoticed (issue 13's budgets). A check of
+    // committed data: it does not depend on the speed of the machine running the test.
+    let cases = cases();
+    let ids: Vec<String> = cases.iter().map(|c| c.header.id.clone()).collect();
+    let reports = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../reports");
+    let recorded = contactlab_verify::core::shard::recorded_seconds(&reports, &ids);
+    for (tier, budget) in [(Tier::Quick, 20.0), (Tier::Default, 90.0)] {
+        let mut total = 0.0;
+        for c in cases.iter().filter(|c| c.header.tier.runs_in(tier)) {
+            total += recorded
+                .get(&c.header.id)
+                .unwrap_or_else(|| panic!("{}: no recorded run time", c.header.id));
+        }
+        assert!(
+            total <= budget,
+            "{tier:?}: {total:.1} s recorded > {budget} s"
+        );
     }
 }
 

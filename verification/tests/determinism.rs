@@ -16,6 +16,7 @@ fn run_into(tag: &str, ids: &[&str], threads: usize) -> std::path::PathBuf {
         out_dir: out.clone(),
         metadata: Metadata::collect("test"),
         progress: false,
+        bars: None,
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

@@ -50,6 +50,7 @@ fn ctx(tag: &str) -> RunContext {
         out_dir: std::env::temp_dir().join(format!("contactlab-e2e-{tag}-{}", std::process::id())),
         metadata: Metadata::collect("test"),
         progress: false,
+        bars: None,
     }
 }
 

@@ -82,6 +82,7 @@ fn quick_moving_cases_pass() {
         out_dir: out.clone(),
         metadata: Metadata::collect("quick"),
         progress: false,
+        bars: None,
     };
     for c in moving_cases()
         .iter()

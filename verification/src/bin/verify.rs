@@ -1,10 +1,13 @@
 //! `cargo run --release --bin verify`: runs the verification cases, writes `reports/`, and exits
 //! non-zero when a gate fails.
 //!
-//! - `verify`                       the default tier (every case), reports in `reports/`
-//! - `verify --quick`               the CI tier (cases marked `tier = "quick"`), reports in `reports/quick/`
+//! - `verify`                       the default tier (quick + default cases, < 90 s), reports in `reports/default/`
+//! - `verify --quick`               the CI tier (cases marked `tier = "quick"`, < 20 s), reports in `reports/quick/`
+//! - `verify --full`                every case, the long studies too: the committed `reports/`
 //! - `verify --case ID [--case ID]` selected cases
-//! - `verify --list`                the catalogue
+//! - `verify --shard I/N`           a deterministic 1/N of the run (balanced by recorded times)
+//! - `verify merge DIR… --out OUT`  join the shards' directories into one run's report
+//! - `verify --list`                the catalogue: tier and last measured time of every case
 //! - `verify scene FILE.toml --out DIR [--max-memory 4G]`   run a user's scene
 //! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
 //! - `verify readme [--check]`   the README's numbers, generated from reports/
@@ -14,18 +17,19 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 
-use contactlab_verify::core::case::{Case, Tier};
+use contactlab_verify::core::case::Tier;
 use contactlab_verify::core::context::RunContext;
 use contactlab_verify::core::report::benchmarks;
 use contactlab_verify::core::report::compare::{check, compare};
-use contactlab_verify::core::report::markdown;
+use contactlab_verify::core::report::manifest::merge;
 use contactlab_verify::core::report::metadata::Metadata;
 use contactlab_verify::core::report::readme;
+use contactlab_verify::core::shard::{recorded_seconds, Shard};
 use contactlab_verify::registry;
+use contactlab_verify::suite;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -35,13 +39,20 @@ use contactlab_verify::registry;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// The CI tier: only cases with tier = "quick" (reports in <out>/quick unless --out is given).
-    #[arg(long)]
+    /// The CI tier: only cases with tier = "quick" (reports in reports/quick unless --out is given).
+    #[arg(long, conflicts_with = "full")]
     quick: bool,
+    /// Every case, the long studies too (reports in reports/, the committed ones, unless --out).
+    #[arg(long)]
+    full: bool,
+    /// Run shard I of N of the selection (e.g. 2/3): a deterministic partition balanced by the
+    /// run times recorded in reports/; join the N output directories with `verify merge`.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<Shard>,
     /// Run only these cases (repeatable).
     #[arg(long = "case", value_name = "ID")]
     cases: Vec<String>,
-    /// List the cases and exit.
+    /// List the cases with their tier and last measured time, and exit.
     #[arg(long)]
     list: bool,
     /// The reports directory (default: <repository>/reports).
@@ -100,6 +111,16 @@ enum Command {
         /// Output directory (default: <repository>/reports).
         #[arg(long)]
         out: Option<PathBuf>,
+    },
+    /// Join the output directories of the shards 1/N … N/N of one run into the directory (and
+    /// the report) of the unsharded run.
+    Merge {
+        /// The shards' output directories.
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
     },
     /// Compare two report directories: every number (and every non-prose text) must be equal;
     /// timings are left out. Exit 1 when they differ.
@@ -197,6 +218,29 @@ fn main() -> ExitCode {
                     println!("{summary}");
                     println!("wrote {}", out.display());
                     ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            };
+        }
+        Some(Command::Merge { dirs, out }) => {
+            return match merge(dirs, out) {
+                Ok(m) => {
+                    let failed = m.manifest.cases.iter().filter(|c| !c.passed).count();
+                    println!(
+                        "merged {} shards: {} case(s), {} failed; report: {}",
+                        m.manifest.shard_count,
+                        m.manifest.cases.len(),
+                        failed,
+                        m.report.display()
+                    );
+                    if failed > 0 {
+                        ExitCode::from(1)
+                    } else {
+                        ExitCode::SUCCESS
+                    }
                 }
                 Err(e) => {
                     eprintln!("error: {e}");
@@ -323,93 +367,58 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    let ids: Vec<String> = cases.iter().map(|c| c.header.id.clone()).collect();
+    let recorded = recorded_seconds(&root.join("reports"), &ids);
     if cli.list {
-        for c in &cases {
-            println!(
-                "{:<36} {:<14} {:<8} {}",
-                c.header.id,
-                c.header.kind,
-                format!("{:?}", c.header.tier).to_lowercase(),
-                c.header.title
-            );
-        }
+        print!("{}", suite::list::render(&cases, &recorded));
         return ExitCode::SUCCESS;
     }
-    for id in &cli.cases {
-        if !cases.iter().any(|c| &c.header.id == id) {
-            eprintln!("error: no case `{id}` (see `verify --list`)");
+    let tier = if cli.quick {
+        Tier::Quick
+    } else if cli.full {
+        Tier::Full
+    } else {
+        Tier::Default
+    };
+    let shard = cli.shard.unwrap_or(Shard::WHOLE);
+    let selection = match suite::select::select(&cases, tier, &cli.cases, shard, &recorded) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
             return ExitCode::from(2);
         }
-    }
-    let selected: Vec<&Case> = cases
-        .iter()
-        .filter(|c| {
-            if !cli.cases.is_empty() {
-                cli.cases.contains(&c.header.id)
-            } else if cli.quick {
-                c.header.tier == Tier::Quick
-            } else {
-                true
-            }
-        })
-        .collect();
-    let tier = if cli.quick { "quick" } else { "default" };
-    let out = cli.out.clone().unwrap_or_else(|| {
-        if cli.quick {
-            root.join("reports/quick")
-        } else {
-            root.join("reports")
-        }
+    };
+    let out = cli.out.clone().unwrap_or_else(|| match tier {
+        Tier::Full => root.join("reports"),
+        t => root.join("reports").join(t.name()),
     });
     if let Err(e) = std::fs::create_dir_all(&out) {
         eprintln!("error: cannot create {}: {e}", out.display());
         return ExitCode::from(2);
     }
-    let metadata = Metadata::collect(tier);
-    let ctx = RunContext {
+    let mut ctx = RunContext {
         out_dir: out.clone(),
-        metadata: metadata.clone(),
+        metadata: Metadata::collect(tier.name()),
         progress: !cli.no_progress,
+        bars: None,
     };
-    let start = Instant::now();
-    let mut reports = Vec::new();
-    for case in selected {
-        let report = registry::run(case, &ctx);
-        println!(
-            "{:<36} {:<5} {:>7.2} s  {}",
-            report.id,
-            if report.passed { "PASS" } else { "FAIL" },
-            report.wall_seconds,
-            report.failure.clone().unwrap_or_default()
-        );
-        for g in report.gates.iter().filter(|g| !g.passed) {
-            for c in g.checks.iter().filter(|c| !c.passed) {
-                println!(
-                    "    gate `{}`: {} = {:.6e}, expected {}",
-                    g.name, c.name, c.observed, c.limit
-                );
-            }
-        }
-        if let Err(e) = report.write(&out) {
-            eprintln!("error: writing the report: {e}");
+    let outcome = match suite::run::run(&selection, &mut ctx, tier.name(), shard) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("error: {e}");
             return ExitCode::from(2);
         }
-        reports.push(report);
-    }
-    let total = start.elapsed().as_secs_f64();
-    let md = markdown::render(&reports, &metadata, total);
-    let md_path = out.join("report.md");
-    if let Err(e) = std::fs::write(&md_path, md) {
-        eprintln!("error: writing {}: {e}", md_path.display());
-        return ExitCode::from(2);
-    }
+    };
+    let reports = &outcome.reports;
+    print!(
+        "{}",
+        suite::run::summary_table(reports, &selection.expected, shard)
+    );
     let failed = reports.iter().filter(|r| !r.passed).count();
     println!(
-        "{} case(s), {} failed, {:.1} s; report: {}",
-        reports.len(),
-        failed,
-        total,
-        md_path.display()
+        "wall time {:.1} s; report: {}",
+        outcome.total_seconds,
+        outcome.report_path.display()
     );
     let mut drifted = false;
     if let Some(reference) = &cli.check {

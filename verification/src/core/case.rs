@@ -13,13 +13,34 @@ use serde::{Deserialize, Serialize};
 
 use crate::core::format::{invalid, CaseError};
 
-/// Which runs include the case: `quick` cases run in `--quick` (CI) and in the default tier.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+/// Which runs include the case. The tiers nest: `verify --quick` (CI, under 20 s) runs the
+/// `quick` cases; `verify` (what a newcomer runs first, under 90 s) runs the `quick` and `default`
+/// ones; `verify --full` runs every case, the long studies too (the committed `reports/`).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Tier {
     Quick,
     #[default]
     Default,
+    Full,
+}
+
+impl Tier {
+    /// Whether a case of this tier runs in a run of tier `run` (quick ⊂ default ⊂ full).
+    pub fn runs_in(self, run: Tier) -> bool {
+        self <= run
+    }
+
+    /// The tier's name as case files and reports write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tier::Quick => "quick",
+            Tier::Default => "default",
+            Tier::Full => "full",
+        }
+    }
 }
 
 /// The keys every case file has, whatever its kind.

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::core::report::case_report::{CaseReport, PlotRef};
@@ -18,6 +18,8 @@ pub struct RunContext {
     pub metadata: Metadata,
     /// Show progress bars (on a terminal).
     pub progress: bool,
+    /// The run's bars, when it draws one for the whole tier: a case's sweep bars join it.
+    pub bars: Option<MultiProgress>,
 }
 
 impl RunContext {
@@ -41,7 +43,10 @@ impl RunContext {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_prefix(label.to_string());
-        bar
+        match &self.bars {
+            Some(m) => m.add(bar),
+            None => bar,
+        }
     }
 
     /// Writes `<case dir>/<name>.svg` with `write` and records it in the report under `title`.

@@ -11,5 +11,6 @@ pub mod gate;
 pub mod json_out;
 pub mod overrides;
 pub mod report;
+pub mod shard;
 pub mod study;
 pub mod sweep;

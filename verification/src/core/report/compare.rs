@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
+use crate::core::report::manifest::MANIFEST;
 use crate::core::report::split::split;
 
 /// Where two report trees differ.
@@ -139,6 +140,9 @@ fn json_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
                 stack.push(p);
             } else if p.extension().is_some_and(|x| x == "json")
                 && !p.to_string_lossy().ends_with(".timings.json")
+                // the run's manifest: its rows and sections carry times and the shard count;
+                // its numbers are the case files'
+                && !(d == dir && p.file_name().is_some_and(|n| n == MANIFEST))
             {
                 if let Ok(rel) = p.strip_prefix(dir) {
                     out.push(rel.to_path_buf());

@@ -3,6 +3,8 @@
 
 use std::fmt::Write;
 
+use serde::{Deserialize, Serialize};
+
 use crate::core::report::case_report::CaseReport;
 use crate::core::report::metadata::Metadata;
 
@@ -52,22 +54,78 @@ fn headline(r: &CaseReport) -> String {
     format!("{passed}/{} gates", r.gates.len())
 }
 
+/// One case's part of the report: its summary row and its section, rendered once by the run
+/// that computed it (a shard keeps them in its `run.json`, so `verify merge` joins the report
+/// without the typed data the sections come from).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CaseMarkdown {
+    pub id: String,
+    pub passed: bool,
+    pub wall_seconds: f64,
+    /// The summary table's row.
+    pub row: String,
+    /// The case's section.
+    pub section: String,
+}
+
+impl CaseMarkdown {
+    pub fn of(r: &CaseReport) -> Self {
+        let mut section = String::new();
+        case_section(&mut section, r);
+        Self {
+            id: r.id.clone(),
+            passed: r.passed,
+            wall_seconds: r.wall_seconds,
+            row: format!(
+                "| [{}](#{}) | {} | {} | {} | {:.2} |",
+                r.id,
+                r.id,
+                r.kind,
+                verdict(r.passed),
+                headline(r),
+                r.wall_seconds
+            ),
+            section,
+        }
+    }
+}
+
+/// The command that runs a tier (for the report's first line).
+fn command_of(tier: &str) -> String {
+    match tier {
+        "quick" | "full" => format!("cargo run --release --bin verify -- --{tier}"),
+        _ => "cargo run --release --bin verify".to_string(),
+    }
+}
+
 /// Renders the whole report.
 pub fn render(reports: &[CaseReport], metadata: &Metadata, total_seconds: f64) -> String {
+    let cases: Vec<CaseMarkdown> = reports.iter().map(CaseMarkdown::of).collect();
+    assemble(&cases, metadata, total_seconds, 1)
+}
+
+/// The report of `cases` (in catalogue order) run in `shards` shards whose wall times add up to
+/// `total_seconds`.
+pub fn assemble(
+    cases: &[CaseMarkdown],
+    metadata: &Metadata,
+    total_seconds: f64,
+    shards: usize,
+) -> String {
     let mut s = String::new();
-    let all = reports.iter().all(|r| r.passed);
+    let all = cases.iter().all(|r| r.passed);
     let _ = writeln!(s, "# contactlab verification report\n");
     let _ = writeln!(
         s,
-        "Produced by `cargo run --release --bin verify{}` — tier **{}**, {} case(s), {:.1} s. \
-         Overall: **{}**.\n",
-        if metadata.tier == "quick" {
-            " -- --quick"
+        "Produced by `{}`{} — tier **{}**, {} case(s), {:.1} s. Overall: **{}**.\n",
+        command_of(&metadata.tier),
+        if shards > 1 {
+            format!(" in {shards} shards joined by `verify merge` (the time is their sum)")
         } else {
-            ""
+            String::new()
         },
         metadata.tier,
-        reports.len(),
+        cases.len(),
         total_seconds,
         if all { "all gates pass" } else { "GATES FAIL" }
     );
@@ -96,20 +154,11 @@ pub fn render(reports: &[CaseReport], metadata: &Metadata, total_seconds: f64) -
     let _ = writeln!(s, "## Summary\n");
     let _ = writeln!(s, "| case | kind | verdict | headline | time (s) |");
     let _ = writeln!(s, "|---|---|---|---|---|");
-    for r in reports {
-        let _ = writeln!(
-            s,
-            "| [{}](#{}) | {} | {} | {} | {:.2} |",
-            r.id,
-            r.id,
-            r.kind,
-            verdict(r.passed),
-            headline(r),
-            r.wall_seconds
-        );
+    for r in cases {
+        let _ = writeln!(s, "{}", r.row);
     }
-    for r in reports {
-        case_section(&mut s, r);
+    for r in cases {
+        s.push_str(&r.section);
     }
     s
 }

@@ -1,9 +1,9 @@
 //! Provenance of a report: crate version, git commit, compiler, host, date, threads.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Where and when a report was produced.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Metadata {
     pub contactlab_version: String,
     pub git_commit: String,
@@ -16,7 +16,7 @@ pub struct Metadata {
     pub threads: usize,
     /// UTC, ISO 8601.
     pub date: String,
-    /// `quick` or `default`.
+    /// `quick`, `default`, `full` (or `test`).
     pub tier: String,
 }
 

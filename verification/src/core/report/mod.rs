@@ -5,6 +5,7 @@
 pub mod benchmarks;
 pub mod case_report;
 pub mod compare;
+pub mod manifest;
 pub mod markdown;
 pub mod metadata;
 pub mod readme;
