@@ -18,7 +18,9 @@ the `solution.json` the same run wrote:
   recomputed here from the stress tensor (and equal to the JSON's plane-stress norm where
   σ_33 = 0), and the resultant of the nodal contact pressure (Σ_i m_i p_i with m_i half the
   lengths of the adjacent contact edges) against the JSON's contact force at that time; for the
-  rod the contact pressure at x = L against −σ(L, t_n).
+  rod the contact pressure at x = L against −σ(L, t_n); for a dynamic plane body the strain and
+  stress tensors (σ_33 included) against the law (linear, St Venant–Kirchhoff, neo-Hooke with
+  the λ, μ of the JSON's description) written here from F = I + ∇u.
 
 Usage: check_vtk.py DIR [DIR ...]; exits 1 on the first failed directory's list of problems.
 """
@@ -68,6 +70,58 @@ def p1_strain(nodes, triangles, u):
         uy = np.array([u[2 * a + 1], u[2 * b + 1], u[2 * c + 1]])
         out[e] = [g[:, 0] @ ux, g[:, 1] @ uy, 0.5 * (g[:, 1] @ ux + g[:, 0] @ uy)]
     return out
+
+
+def law_stress(body, F):
+    """The stress and strain (c, 9) of a plane-strain hyperelastic law written here from its
+    definition, for deformation gradients F (c, 2, 2) (F_33 = 1), or None when `body` (the JSON's
+    description) names no law known here. Small strain: ε = sym(F − I), σ = λ tr ε I + 2μ ε,
+    σ_33 = λ tr ε; St Venant–Kirchhoff: E = ½(FᵀF − I), S = λ tr E I + 2μ E, σ = F S Fᵀ / J,
+    σ_33 = λ tr E / J; neo-Hooke: σ = (μ (F Fᵀ − I) + λ ln J I) / J, σ_33 = λ ln J / J."""
+    import re
+    m = re.search(r"(linear elastic|St Venant-Kirchhoff|neo-Hooke), plane strain \(λ = ([^,]+), μ = ([^)]+)\)", body)
+    if not m:
+        return None
+    law, lam, mu = m.group(1), float(m.group(2)), float(m.group(3))
+    eye = np.eye(2)
+    J = np.linalg.det(F)
+    Ft = np.transpose(F, (0, 2, 1))
+    if law == "linear elastic":
+        strain = 0.5 * (F + Ft) - eye
+        tr = np.trace(strain, axis1=1, axis2=2)
+        sigma = lam * tr[:, None, None] * eye + 2 * mu * strain
+        s33 = lam * tr
+    elif law == "St Venant-Kirchhoff":
+        strain = 0.5 * (Ft @ F - eye)
+        tr = np.trace(strain, axis1=1, axis2=2)
+        S = lam * tr[:, None, None] * eye + 2 * mu * strain
+        sigma = F @ S @ Ft / J[:, None, None]
+        s33 = lam * tr / J
+    else:
+        strain = 0.5 * (Ft @ F - eye)
+        lnJ = np.log(J)
+        sigma = (mu * (F @ Ft - eye) + lam * lnJ[:, None, None] * eye) / J[:, None, None]
+        s33 = lam * lnJ / J
+
+    def full(t, t33):
+        out = np.zeros((len(t), 9))
+        out[:, [0, 1, 3, 4]] = t.reshape(-1, 4)
+        out[:, 8] = t33
+        return out
+
+    return full(sigma, s33), full(strain, np.zeros(len(strain)))
+
+
+def deformation_gradients(nodes, triangles, u):
+    """F = I + ∇u of P1 triangles, (c, 2, 2), computed here from the node coordinates."""
+    F = np.zeros((len(triangles), 2, 2))
+    for e, (a, b, c) in enumerate(triangles):
+        (x0, y0), (x1, y1), (x2, y2) = nodes[a], nodes[b], nodes[c]
+        det = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+        g = np.array([[y1 - y2, x2 - x1], [y2 - y0, x0 - x2], [y0 - y1, x1 - x0]]) / det
+        U = np.array([u[a], u[b], u[c]])  # (3 nodes, 2 components)
+        F[e] = np.eye(2) + U.T @ g
+    return F
 
 
 def contact_masses(nodes, triangles, on_contact):
@@ -216,6 +270,15 @@ def check_dir(d: Path):
                     f = sol["contact_force"][i]
                     p.check(abs(resultant - f) <= 1e-10 * max(1.0, abs(f)),
                             f"{where}: Σ m_i p_i = {resultant!r}, JSON contact force {f!r}")
+        if fam == "dynamic_plane":
+            F = deformation_gradients(nodes, triangles, u_json)
+            law = law_stress(sol["body"], F)
+            if p.check(law is not None, f"{where}: no law known here in {sol['body']!r}"):
+                stress, strain = law
+                scale = max(1.0, float(np.max(np.abs(stress))))
+                p.check(bool(np.all(np.abs(cd["stress"] - stress) <= 1e-9 * scale)),
+                        f"{where}: stress differs from the law's written here (max {np.max(np.abs(cd['stress'] - stress))!r})")
+                p.check(close(cd["strain"], strain, 1e-9), f"{where}: strain differs from the law's measure written here")
         if fam == "rod" and present:
             sigma = sol["contact_stress"][s["n"]]
             p.check(pd["contact_pressure"][-1] == -sigma, f"{where}: contact pressure at L {pd['contact_pressure'][-1]!r}, JSON −σ(L) {-sigma!r}")
