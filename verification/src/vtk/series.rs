@@ -37,3 +37,37 @@ pub fn write_series(
     written.push(pvd);
     Ok(written)
 }
+
+#[cfg(test)]
+mod tests {
+    //! A series whose last frame holds a NaN is refused before the first file is written: no
+    //! partial series is left for ParaView to open.
+    use super::*;
+    use crate::vtk::frame::{Array, Cells};
+
+    fn frame(t: f64, value: f64) -> Frame {
+        Frame {
+            time: t,
+            points: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
+            cells: Cells::Lines(vec![[0, 1]]),
+            point_data: vec![Array::plane_vectors(
+                "displacement",
+                [[0.0, 0.0], [value, 0.0]],
+            )],
+            cell_data: vec![],
+        }
+    }
+
+    #[test]
+    fn a_non_finite_frame_leaves_no_file() {
+        let dir =
+            std::env::temp_dir().join(format!("contactlab-vtk-series-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let e = write_series(&dir, "s", "t", &[frame(0.0, 1.0), frame(1.0, f64::NAN)]).unwrap_err();
+        assert!(e.contains("displacement") && e.contains("t = 1"), "{e}");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        let written = write_series(&dir, "s", "t", &[frame(0.0, 1.0), frame(1.0, 2.0)]).unwrap();
+        assert_eq!(written.len(), 3);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
