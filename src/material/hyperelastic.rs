@@ -74,6 +74,12 @@ pub trait Hyperelastic2d: Send + Sync + Debug {
     /// Whether the law is the small-strain (geometrically linear) one.
     fn is_small_strain(&self) -> bool;
 
+    /// The out-of-plane stress σ_33 of plane strain (F_33 = 1), in the measure of
+    /// [`crate::material::stress_state`]: the small-strain law's σ_33 = λ tr ε
+    /// (= κ (σ_11 + σ_22)), the finite-strain laws' Cauchy σ_33 = S_33 / J (F_33 = 1), NaN
+    /// outside the law's domain.
+    fn out_of_plane_stress(&self, f: &Matrix2<f64>) -> f64;
+
     /// A short description for reports.
     fn describe(&self) -> String;
 
@@ -323,6 +329,11 @@ impl Hyperelastic2d for LinearElastic {
         self.stress(&Self::strain(f))
     }
 
+    /// σ_33 = λ tr ε (ε_33 = 0).
+    fn out_of_plane_stress(&self, f: &Matrix2<f64>) -> f64 {
+        self.lambda * Self::strain(f).trace()
+    }
+
     fn tangent(&self, _f: &Matrix2<f64>, df: &Matrix2<f64>) -> Matrix2<f64> {
         self.stress(&(0.5 * twice_sym(df)))
     }
@@ -385,6 +396,11 @@ impl Hyperelastic2d for StVenantKirchhoff {
 
     fn piola(&self, f: &Matrix2<f64>) -> Matrix2<f64> {
         f * self.second_piola(&green_lagrange(f))
+    }
+
+    /// S_33 = λ tr E (E_33 = 0), σ_33 = S_33 / J.
+    fn out_of_plane_stress(&self, f: &Matrix2<f64>) -> f64 {
+        self.lambda * green_lagrange(f).trace() / det(f)
     }
 
     /// dP = dF S + F S(dE), dE = sym(Fᵀ dF).
@@ -535,6 +551,14 @@ impl Hyperelastic2d for NeoHooke {
         }
         let f_inv_t = cofactor(f) / det(f);
         (f - f_inv_t) * self.mu + f_inv_t * (self.lambda * ln_det(f))
+    }
+
+    /// S_33 = μ (1 − C_33⁻¹) + λ ln J C_33⁻¹ = λ ln J (C_33 = 1), σ_33 = λ ln J / J.
+    fn out_of_plane_stress(&self, f: &Matrix2<f64>) -> f64 {
+        if !self.admissible(f) {
+            return f64::NAN;
+        }
+        self.lambda * ln_det(f) / det(f)
     }
 
     /// dP = μ dF + (μ − λ ln J) F⁻ᵀ dFᵀ F⁻ᵀ + λ (F⁻ᵀ : dF) F⁻ᵀ.

@@ -9,7 +9,10 @@
 //! - `hyperelastic`: hyperelastic laws Π = ∂_F W(F) for plane strain and bars (linear,
 //!   St Venant–Kirchhoff, neo-Hooke) with the Gonzalez energy-conserving discrete gradient
 //!   (Barboteu–Danan–Sofonea (1.41)–(1.43)).
+//! - `stress_state`: the strain, stress, out-of-plane stress and von Mises stress that result
+//!   files report per element.
 
 pub mod hyperelastic;
 pub mod nonlinear;
 pub mod plane_law;
+pub mod stress_state;

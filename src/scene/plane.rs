@@ -51,6 +51,7 @@
 //!
 //! [output]
 //! times = [0.5, 1.0]
+//! vtk = false                      # `verify scene` also writes ParaView files (.vtu per time, .pvd)
 //!
 //! [solver]
 //! path = "auto"                    # "auto" | "condensed" | "newton"
@@ -209,6 +210,10 @@ pub struct InitialSection {
 pub struct PlaneOutputSection {
     #[serde(default)]
     pub times: Vec<f64>,
+    /// `verify scene` also writes one `.vtu` per snapshot and a `.pvd` collection (ParaView):
+    /// displacement, velocity, strain, stress, von Mises, the contact quantities, the body id.
+    #[serde(default)]
+    pub vtk: bool,
 }
 
 /// `[solver]`.

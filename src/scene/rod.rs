@@ -34,6 +34,7 @@
 //! times = [0.1, 0.25, 0.5]     # snapshot times (grid times)
 //! probes = [0.25, 0.5, 1.0]    # points whose displacement history is recorded
 //! post_process_velocity = false
+//! vtk = false                  # `verify scene` also writes ParaView files (.vtu line series, .pvd)
 //!
 //! [solver]
 //! newton_relative_tolerance = 1.7763568394002505e-15
@@ -135,6 +136,10 @@ pub struct OutputSection {
     pub probes: Vec<f64>,
     #[serde(default)]
     pub post_process_velocity: bool,
+    /// `verify scene` also writes one `.vtu` (line cells over the interval mesh) per snapshot
+    /// and a `.pvd` collection (ParaView): displacement, velocity, the contact quantities.
+    #[serde(default)]
+    pub vtk: bool,
 }
 
 /// `[solver]`.
@@ -158,6 +163,8 @@ pub struct RodScene {
     pub output: RodOutputRequest,
     /// The scene's `[exact]` table, for the verification suite (not read by the solver).
     pub exact: Option<toml::Table>,
+    /// `[output] vtk`: `verify scene` also writes ParaView files (not read by the solver).
+    pub vtk: bool,
 }
 
 impl RodScene {
@@ -224,6 +231,7 @@ impl RodScene {
                 probes: file.output.probes.clone(),
             },
             exact: file.exact.clone(),
+            vtk: file.output.vtk,
         })
     }
 

@@ -4,8 +4,8 @@
 //! plots and reports. The solver crate never knows it is being verified: this crate sees solutions,
 //! energies and statistics through public types only.
 //!
-//! Imports run one way: `bin → suite → registry → families → core → {stats, plot, exact, manufactured} →
-//! contactlab`. The [`core`] knows no model family; each family ([`rod`], [`plane`], [`dynamic`],
+//! Imports run one way: `bin → suite → registry → families → core → {stats, plot, vtk, exact,
+//! manufactured} → contactlab`. The [`core`] knows no model family; each family ([`rod`], [`plane`], [`dynamic`],
 //! [`moving`]) has the same shape (see [`family`]) and imports no other family.
 
 // Numerical kernels index several arrays in lockstep (u_i, w_i, g_i, z_i; rows and columns):
@@ -25,3 +25,4 @@ pub mod robustness;
 pub mod rod;
 pub mod stats;
 pub mod suite;
+pub mod vtk;

@@ -140,8 +140,45 @@ pub fn writable_out(out: &Path) -> Result<Vec<String>, String> {
 /// (`Scene::load`, which dispatches on its `model`), and the family that writes that model's
 /// results runs it. Returns a summary.
 pub fn run_scene(file: &Path, out: &Path) -> Result<String, String> {
+    run_scene_with(file, out, false)
+}
+
+/// Turns on the ParaView output of a scene (`[output] vtk = true`); an error for a model that
+/// has none.
+pub fn request_vtk(scene: &mut Scene) -> Result<(), String> {
+    match scene {
+        Scene::Rod(s) => s.vtk = true,
+        Scene::Plane(s) => s.file.output.vtk = true,
+        Scene::Dynamic(s) => s.file.output.vtk = true,
+        Scene::Moving(_) => {
+            return Err(format!(
+                "--vtk: model `{}` writes no ParaView files (rod, plane and dynamic scenes do)",
+                scene.model()
+            ))
+        }
+    }
+    Ok(())
+}
+
+/// [`run_scene`]; with `vtk`, as if the scene said `[output] vtk = true` (`verify scene --vtk`).
+pub fn run_scene_with(file: &Path, out: &Path, vtk: bool) -> Result<String, String> {
     let source = file.display().to_string();
-    let scene = Scene::load(file).map_err(|e| format!("{source}: {e}"))?;
+    let mut scene = Scene::load(file).map_err(|e| format!("{source}: {e}"))?;
+    if vtk {
+        request_vtk(&mut scene).map_err(|e| format!("{source}: {e}"))?;
+    }
+    // a ParaView series without an output time would cost the whole run for nothing
+    let (wants_vtk, no_times) = match &scene {
+        Scene::Rod(s) => (s.vtk, s.output.snapshot_times.is_empty()),
+        Scene::Plane(s) => (s.file.output.vtk, s.output.snapshot_times.is_empty()),
+        Scene::Dynamic(s) => (s.file.output.vtk, s.file.output.times.is_empty()),
+        Scene::Moving(_) => (false, false),
+    };
+    if wants_vtk && no_times {
+        return Err(format!(
+            "{source}: output.vtk: no output time to write (list them in [output] times)"
+        ));
+    }
     let removed = writable_out(out)?;
     let model = scene.model();
     let family = FAMILIES

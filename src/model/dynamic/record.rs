@@ -5,10 +5,20 @@
 
 use crate::error::Error;
 use crate::model::dynamic::audit::{AuditSummary, EnergyAudit};
+use crate::model::dynamic::newton::NodeForces;
 use crate::model::dynamic::scheme::DynamicScheme;
 use crate::model::dynamic::solver::{
     DynamicProblem, DynamicSolution, DynamicSolver, DynamicStats, StepView,
 };
+
+/// What a result file shows beside a snapshot's displacement.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SnapshotState {
+    /// The scheme's velocity at the snapshot's step (free dofs).
+    pub velocity: Vec<f64>,
+    /// The contact nodes' forces of the step (in the order of the contact model's nodes).
+    pub forces: Vec<NodeForces>,
+}
 
 /// A run observed step by step: what was computed, whether or not the run completed.
 #[derive(Debug)]
@@ -17,6 +27,8 @@ pub struct RecordedRun {
     pub audit: EnergyAudit,
     /// (t, u) at the requested times (nearest step), as far as the run got.
     pub snapshots: Vec<(f64, Vec<f64>)>,
+    /// The state beside each snapshot (same order): the velocity and the contact nodes' forces.
+    pub snapshot_states: Vec<SnapshotState>,
     /// The last completed state (free dofs).
     pub displacement: Vec<f64>,
     pub velocity: Vec<f64>,
@@ -61,6 +73,7 @@ pub fn run_recorded_with(
         ..Default::default()
     };
     let mut snapshots = Vec::new();
+    let mut snapshot_states = Vec::new();
     let mut displacement = solver.problem().initial_displacement.clone();
     let mut velocity = solver.problem().initial_velocity.clone();
     let result = solver.solve_with(&mut |view: &StepView<'_>| {
@@ -71,6 +84,10 @@ pub fn run_recorded_with(
         while next < times.len() && times[next] <= view.time + 0.5 * k {
             if times[next] > view.time - 0.5 * k || view.step == 0 {
                 snapshots.push((view.time, view.displacement.to_vec()));
+                snapshot_states.push(SnapshotState {
+                    velocity: view.velocity.to_vec(),
+                    forces: view.forces.to_vec(),
+                });
             }
             next += 1;
         }
@@ -78,6 +95,7 @@ pub fn run_recorded_with(
     RecordedRun {
         audit,
         snapshots,
+        snapshot_states,
         displacement,
         velocity,
         result,

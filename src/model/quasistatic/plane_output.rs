@@ -33,6 +33,11 @@ pub struct PlaneSnapshot {
     pub stress: Vec<[f64; 3]>,
     /// The plane-stress von Mises norm of σ per triangle.
     pub von_mises: Vec<f64>,
+    /// The normal velocity w_ν = (C w)_g at the contact points (in the order of
+    /// `PlaneDofs::contact_points`: two Gauss points per Γ3 edge, or the Γ3 nodes).
+    pub contact_velocity: Vec<f64>,
+    /// The pressure p_ν(w_ν) at the contact points.
+    pub contact_pressure: Vec<f64>,
 }
 
 /// The recorded solution.
@@ -206,6 +211,8 @@ impl PlaneObserver for PlaneRecorder {
                     w: step.w.map(|w| w.to_vec()),
                     von_mises: stress.iter().map(von_mises_plane_stress).collect(),
                     stress,
+                    contact_velocity: step.contact_velocity.to_vec(),
+                    contact_pressure: step.contact_pressure.to_vec(),
                 });
             }
         }

@@ -143,6 +143,10 @@ pub struct FrictionSection {
 pub struct DynamicOutputSection {
     #[serde(default)]
     pub times: Vec<f64>,
+    /// `verify scene` also writes one `.vtu` per snapshot and a `.pvd` collection (ParaView):
+    /// displacement, velocity, strain, stress, von Mises, the contact quantities, the body id.
+    #[serde(default)]
+    pub vtk: bool,
 }
 
 /// `[solver]`.

@@ -59,6 +59,7 @@
 //!
 //! [output]
 //! times = [0.01, 0.02]         # snapshots of the displacement
+//! vtk = false                  # `verify scene` also writes ParaView files (.vtu per time, .pvd)
 //!
 //! [solver]
 //! tolerance = 1e-12

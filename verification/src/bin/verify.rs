@@ -8,7 +8,8 @@
 //! - `verify --shard I/N`           a deterministic 1/N of the run (balanced by recorded times)
 //! - `verify merge DIR… --out OUT`  join the shards' directories into one run's report
 //! - `verify --list`                the catalogue: tier and last measured time of every case
-//! - `verify scene FILE.toml --out DIR [--max-memory 4G]`   run a user's scene
+//! - `verify scene FILE.toml --out DIR [--max-memory 4G] [--vtk]`   run a user's scene (--vtk:
+//!   also ParaView files)
 //! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
 //! - `verify readme [--check]`   the README's numbers, generated from reports/
 //! - `verify benches`   criterion's measurements against `benches/budgets.toml` (after `cargo bench`)
@@ -91,6 +92,10 @@ enum Command {
         /// the solver computed until then is written where the model records it).
         #[arg(long, value_name = "SECONDS")]
         time_limit: Option<f64>,
+        /// Also write the ParaView files (as `[output] vtk = true`): one .vtu per output time and
+        /// a solution.pvd collection with the time values, beside the JSON.
+        #[arg(long)]
+        vtk: bool,
     },
     /// Regenerate the README's numbers (its `<!-- generated: … -->` blocks) from reports/;
     /// with --check, exit 1 when they differ instead.
@@ -182,6 +187,7 @@ fn main() -> ExitCode {
             out,
             max_memory,
             time_limit,
+            vtk,
         }) => {
             if let Some(seconds) = time_limit {
                 match std::time::Duration::try_from_secs_f64(*seconds) {
@@ -208,7 +214,7 @@ fn main() -> ExitCode {
                 }
             }
             let progress = scene_progress();
-            let result = registry::run_scene(file, out);
+            let result = registry::run_scene_with(file, out, *vtk);
             if let Some((done, handle)) = progress {
                 done.store(true, std::sync::atomic::Ordering::Relaxed);
                 let _ = handle.join();

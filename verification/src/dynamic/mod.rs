@@ -19,6 +19,7 @@ pub mod cases;
 pub mod errors;
 pub mod scene;
 pub mod study;
+pub mod vtk;
 
 use std::path::Path;
 

@@ -16,6 +16,9 @@
 //!   and the snapshots (`snapshots.svg`: the deformed plane body coloured by the strain-energy
 //!   density W(F) with the foundation and the initial boundary; u(x) for a bar).
 //!
+//! - with `[output] vtk = true`: the ParaView series `solution.pvd` and one `solution_<i>.vtu` per
+//!   snapshot reached ([`crate::dynamic::vtk`]).
+//!
 //! The summary paragraph gives the energies, the largest penetration and contact force, the
 //! largest identity residuals and the Newton statistics.
 
@@ -272,7 +275,18 @@ pub fn write_scene(scene: &DynamicScene, source: &str, out: &Path) -> Result<Str
             .map_err(|e| format!("{source}: solution.json: {e}"))?,
     )?;
     write_plots(scene, &title, &run, snapshots, out)?;
-    let text = summary_text(scene, source, &run, &summary);
+    let mut text = summary_text(scene, source, &run, &summary);
+    if scene.file.output.vtk {
+        let frames =
+            crate::dynamic::vtk::frames(scene, &run).map_err(|e| format!("{source}: {e}"))?;
+        crate::vtk::write_series(out, "solution", &title, &frames)
+            .map_err(|e| format!("{source}: {e}"))?;
+        text.push_str(&format!(
+            "; ParaView: {} ({} .vtu)",
+            out.join("solution.pvd").display(),
+            frames.len()
+        ));
+    }
     match &run.result {
         Ok(_) => Ok(text),
         Err(e) => Err(format!(

@@ -14,6 +14,7 @@ pub mod cases;
 pub mod errors;
 pub mod scene;
 pub mod study;
+pub mod vtk;
 
 use std::path::Path;
 

@@ -3,7 +3,8 @@
 //! (`model = "plane"`): it runs the scene and writes `solution.json` (nodes, triangles, snapshots
 //! with u, w, stress and von Mises per triangle, the contact force history, solver statistics), a
 //! deformed-mesh plot with the von Mises field at the last snapshot, and the contact force
-//! history.
+//! history; with `[output] vtk = true` also the ParaView series `solution.pvd` and one
+//! `solution_<i>.vtu` per snapshot ([`crate::plane::vtk`]).
 
 use std::path::Path;
 
@@ -182,8 +183,21 @@ pub fn write_scene(scene: &PlaneScene, source: &str, out: &Path) -> Result<Strin
         ),
         None => String::new(),
     };
+    let vtk_text = if scene.file.output.vtk {
+        let frames =
+            crate::plane::vtk::frames(scene, &sol).map_err(|e| format!("{source}: {e}"))?;
+        crate::vtk::write_series(out, "solution", &title, &frames)
+            .map_err(|e| format!("{source}: {e}"))?;
+        format!(
+            "; ParaView: {} ({} .vtu)",
+            out.join("solution.pvd").display(),
+            frames.len()
+        )
+    } else {
+        String::new()
+    };
     Ok(format!(
-        "{source}: {} path, {} dofs, {} steps ({} skipped for lack of equilibrium), {} sparse factorizations, {} Newton iterations; von Mises max at the last snapshot {vm_max:.4}{bound_text}",
+        "{source}: {} path, {} dofs, {} steps ({} skipped for lack of equilibrium), {} sparse factorizations, {} Newton iterations; von Mises max at the last snapshot {vm_max:.4}{bound_text}{vtk_text}",
         sol.stats.path,
         sol.stats.dofs,
         sol.stats.steps,

@@ -14,6 +14,7 @@ pub mod errors;
 pub mod reference;
 pub mod scene;
 pub mod study;
+pub mod vtk;
 
 use std::path::Path;
 

@@ -22,7 +22,8 @@ pub struct SceneErrors {
 }
 
 /// Runs a rod scene and writes `solution.json` (and, with an `[exact]` table, `errors.json`) and
-/// two plots into `out`. Returns a one-paragraph summary.
+/// two plots into `out` (with `[output] vtk = true` also the ParaView line series
+/// `solution.pvd`, [`crate::rod::vtk`]). Returns a one-paragraph summary.
 pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String, String> {
     let source = source.to_string();
     let exact: Option<ExactSpec> = match &scene.exact {
@@ -173,5 +174,16 @@ pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String,
         ));
     }
     write_svg(&snaps, &out.join("snapshots.svg")).map_err(|e| e.to_string())?;
+    if scene.vtk {
+        let frames =
+            crate::rod::vtk::frames(scene, &solution).map_err(|e| format!("{source}: {e}"))?;
+        crate::vtk::write_series(out, "solution", &title, &frames)
+            .map_err(|e| format!("{source}: {e}"))?;
+        summary.push_str(&format!(
+            "; ParaView: {} ({} .vtu)",
+            out.join("solution.pvd").display(),
+            frames.len()
+        ));
+    }
     Ok(summary)
 }
