@@ -7,7 +7,9 @@
 //! title = "neo-Hookean ring thrown obliquely at the foundation"
 //!
 //! [body]
-//! shape = "annulus"            # "bar" | "rectangle" | "disk" | "annulus"
+//! shape = "annulus"            # "bar" | "rectangle" | "disk" | "annulus" | "gmsh" (file =
+//!                               # "part.msh" relative to the scene file, optional scale, offset;
+//!                               # boundary parts then may select group = "name" of the file)
 //! center = [0.0, 0.52]         # disk, annulus
 //! inner = 0.3                  # annulus
 //! outer = 0.5                  # annulus; disk: radius = 0.5, rings = 12
