@@ -172,6 +172,91 @@ pub enum SolveError {
     },
 }
 
+/// A mesh file (Gmsh `.msh`) that cannot be used: which file, where in it, what is wrong.
+///
+/// Displayed as `mesh file <file>: <location>: <problem>`; the location names the element or node
+/// by its tag in the file (`element 17 (surface 1)`, `node 4`), a physical group by its name, or a
+/// byte offset for a syntax error.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("mesh file {file}: {location}: {problem}")]
+pub struct MeshFileError {
+    /// The file as given (a path, or a label for bytes).
+    pub file: String,
+    /// Where: `element 17 (surface 1)`, `node 4`, `physical group "seal"`, `byte 120`, `file`.
+    pub location: String,
+    /// What is wrong.
+    pub problem: MeshProblem,
+}
+
+/// What is wrong with a mesh file ([`MeshFileError`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeshProblem {
+    /// The file cannot be read.
+    #[error("cannot be read: {0}")]
+    Io(String),
+    /// The text or bytes do not follow the format.
+    #[error("not a valid .msh file: {0}")]
+    Syntax(String),
+    /// A format version or variant that is not read.
+    #[error("format {0} is not read (formats read: 4.1 ASCII and binary, 2.2 ASCII)")]
+    UnsupportedFormat(String),
+    /// A count beyond what the file's length can hold, or beyond the hard maximum.
+    #[error("{what} = {count} exceeds {limit}")]
+    TooLarge {
+        what: String,
+        count: u64,
+        limit: String,
+    },
+    /// An element type other than 3-node triangles, 2-node lines and points.
+    #[error(
+        "element type {code} ({name}) is not supported: only 3-node triangles (and 2-node lines \
+         of boundary groups; points are ignored)"
+    )]
+    UnsupportedElement { code: u32, name: String },
+    /// An element that names a node the file does not define.
+    #[error("refers to node {0}, which the file does not define")]
+    UnknownNode(u64),
+    /// A node off the plane z = 0.
+    #[error("z = {z:e}: expected a plane mesh in z = 0 (|z| <= {tolerance:e})")]
+    NotPlanar { z: f64, tolerance: f64 },
+    /// A triangle whose area is zero to the stated tolerance.
+    #[error(
+        "degenerate triangle (nodes {nodes:?}): |area| = {area:e} <= {tolerance:e} \
+         (1e-12 h², h the longest triangle edge of the mesh)"
+    )]
+    DegenerateTriangle {
+        nodes: [u64; 3],
+        area: f64,
+        tolerance: f64,
+    },
+    /// Two nodes at the same position.
+    #[error(
+        "node {node} and node {other} are duplicates: distance {distance:e} <= {tolerance:e} \
+         (1e-12 × the bounding box diagonal)"
+    )]
+    DuplicateNode {
+        node: u64,
+        other: u64,
+        distance: f64,
+        tolerance: f64,
+    },
+    /// Nodes used by no triangle.
+    #[error("{count} node(s) used by no triangle (first: {first:?})")]
+    UnusedNodes { count: usize, first: Vec<u64> },
+    /// A line of a boundary group that is not a boundary edge of the triangles.
+    #[error("the line (nodes {nodes:?}) of physical group \"{group}\" is not a boundary edge of the mesh")]
+    NotOnBoundary { group: String, nodes: [u64; 2] },
+    /// An edge shared by more than two triangles.
+    #[error("the edge (nodes {nodes:?}) is shared by {triangles} triangles: a non-manifold mesh")]
+    NonManifoldEdge { nodes: [u64; 2], triangles: usize },
+    /// A boundary node where more than two boundary edges meet (two parts touching at a point).
+    #[error("{edges} boundary edges meet at this node: a non-manifold boundary")]
+    NonManifoldNode { edges: usize },
+    /// No triangles.
+    #[error("no 3-node triangles (a 2D physical group must contain the surface)")]
+    NoTriangles,
+}
+
 /// Any error of the crate.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
@@ -181,6 +266,9 @@ pub enum Error {
     /// A solver failure.
     #[error(transparent)]
     Solve(#[from] SolveError),
+    /// A mesh file that cannot be used.
+    #[error(transparent)]
+    Mesh(#[from] MeshFileError),
     /// A scene file that cannot be read or parsed.
     #[error("scene {source_name}: {message}")]
     Scene {

@@ -59,7 +59,8 @@ pub enum Solution {
 }
 
 impl Scene {
-    /// Reads and validates the scene file at `path`.
+    /// Reads and validates the scene file at `path` (a Gmsh `file` it names is relative to the
+    /// directory of `path`).
     pub fn load(path: &Path) -> Result<Self, Error> {
         let source = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| scene_error(&source, e))?;
@@ -103,11 +104,13 @@ impl Scene {
                 Scene::Rod(Box::new(RodScene::from_file(file)?))
             }
             "plane" => {
-                let file: PlaneSceneFile = table.try_into().map_err(parse)?;
+                let mut file: PlaneSceneFile = table.try_into().map_err(parse)?;
+                file.base_dir = scene_dir(source_name);
                 Scene::Plane(Box::new(PlaneScene::from_file(file)?))
             }
             "dynamic" => {
-                let file: DynamicSceneFile = table.try_into().map_err(parse)?;
+                let mut file: DynamicSceneFile = table.try_into().map_err(parse)?;
+                file.base_dir = scene_dir(source_name);
                 Scene::Dynamic(Box::new(DynamicScene::from_file(file)?))
             }
             "moving_string" | "disc_particle" | "rotating_plate" => {
@@ -256,6 +259,15 @@ const REPEATED_KEYS: [&str; 3] = ["dirichlet", "traction", "sweep"];
 
 /// A section written as something else is refused: serde would read `string = [0.5, 0.05]` as
 /// the fields of `[string]` in order, silently.
+/// The directory of the scene file `source_name`, which the Gmsh files it names are relative to
+/// (`None` for a name without a directory: the working directory).
+fn scene_dir(source_name: &str) -> Option<std::path::PathBuf> {
+    Path::new(source_name)
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .map(Path::to_path_buf)
+}
+
 fn check_sections(table: &toml::Table) -> Result<(), Error> {
     let section = |path: &str, v: &toml::Value| -> Result<(), Error> {
         let ok = match v {

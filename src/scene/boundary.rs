@@ -1,6 +1,7 @@
 //! The boundary parts of a plane body's scene, shared by the plane and the dynamic scenes:
-//! `[[dirichlet]]` and `[[traction]]` sections, each selecting its edges by side or by a `where`
-//! expression, and vectors of two numbers or expressions.
+//! `[[dirichlet]]` and `[[traction]]` sections, each selecting its edges by side, by a `where`
+//! expression or by a boundary `group` of the body's Gmsh file (exactly one of the three), and
+//! vectors of two numbers or expressions.
 
 use std::sync::Arc;
 
@@ -8,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::InputError;
 use crate::field::{Expression, Field};
+use crate::mesh::gmsh::GmshMesh;
 use crate::mesh::triangle::{RectangleSide, TriangleMesh};
 use crate::model::quasistatic::plane::{BoundarySelector, DirichletPart, Support, TractionPart};
 use crate::scene::common::missing;
@@ -23,6 +25,9 @@ pub struct DirichletSection {
     /// it positive (e.g. `"1e-9 - x"` for the edges on x = 0).
     #[serde(rename = "where")]
     pub where_: Option<String>,
+    /// Instead of `sides` or `where`: a boundary physical group (dimension 1) of the body's Gmsh
+    /// file (`shape = "gmsh"`), by name.
+    pub group: Option<String>,
     pub support: Support,
 }
 
@@ -34,16 +39,49 @@ pub struct TractionSection {
     pub sides: Vec<RectangleSide>,
     #[serde(rename = "where")]
     pub where_: Option<String>,
+    /// A boundary group of the body's Gmsh file (as in `[[dirichlet]]`).
+    pub group: Option<String>,
     #[serde(deserialize_with = "super::fixed_array::exact")]
     pub value: [FieldSpec; 2],
 }
 
-/// The boundary part of a section: its sides, or the edges whose midpoint makes `where` positive.
+/// How a section selects its boundary part: exactly one of `sides`, `where`, `group`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Selection<'a> {
+    pub sides: &'a [RectangleSide],
+    pub where_: Option<&'a String>,
+    pub group: Option<&'a String>,
+}
+
+/// The boundary part of a section: its sides, the edges whose midpoint makes `where` positive,
+/// or the edges of a boundary group of `gmsh` (the body's mesh file, if it has one).
 pub(crate) fn selector(
     prefix: &str,
-    sides: &[RectangleSide],
-    where_: Option<&String>,
+    s: Selection,
+    gmsh: Option<&GmshMesh>,
 ) -> Result<BoundarySelector, InputError> {
+    if let Some(name) = s.group {
+        if !s.sides.is_empty() || s.where_.is_some() {
+            return Err(InputError::new(
+                format!("{prefix}.group"),
+                "(given with sides or where)",
+                "exactly one of sides, where and group",
+            ));
+        }
+        let Some(gmsh) = gmsh else {
+            return Err(InputError::new(
+                format!("{prefix}.group"),
+                format!("\"{name}\""),
+                "a body read from a Gmsh file (shape = \"gmsh\") to name its groups",
+            ));
+        };
+        let edges = gmsh.boundary_group(&format!("{prefix}.group"), name)?;
+        return Ok(BoundarySelector::Edges {
+            group: name.clone(),
+            edges: Arc::new(edges.to_vec()),
+        });
+    }
+    let (sides, where_) = (s.sides, s.where_);
     match (sides.is_empty(), where_) {
         (false, None) => Ok(BoundarySelector::Sides(sides.to_vec())),
         (true, Some(text)) => {
@@ -59,7 +97,7 @@ pub(crate) fn selector(
         )),
         (true, None) => Err(missing(
             format!("{prefix}.sides"),
-            "sides = [...] or where = \"expression of x, y\"",
+            "sides = [...], where = \"expression of x, y\" or group = \"name\"",
         )),
     }
 }
@@ -75,13 +113,22 @@ pub(crate) fn vector(prefix: &str, v: &[FieldSpec; 2]) -> Result<[Field; 2], Inp
 /// The Dirichlet parts of the `[[dirichlet]]` sections, section i named `dirichlet[i]`.
 pub(crate) fn dirichlet_parts(
     sections: &[DirichletSection],
+    gmsh: Option<&GmshMesh>,
 ) -> Result<Vec<DirichletPart>, InputError> {
     sections
         .iter()
         .enumerate()
         .map(|(i, d)| {
             Ok(DirichletPart {
-                boundary: selector(&format!("dirichlet[{i}]"), &d.sides, d.where_.as_ref())?,
+                boundary: selector(
+                    &format!("dirichlet[{i}]"),
+                    Selection {
+                        sides: &d.sides,
+                        where_: d.where_.as_ref(),
+                        group: d.group.as_ref(),
+                    },
+                    gmsh,
+                )?,
                 support: d.support,
             })
         })
@@ -109,6 +156,7 @@ fn require_selected<'a>(
                     ),
                 ),
                 BoundarySelector::Predicate(_) => ("where", "(the expression)".to_string()),
+                BoundarySelector::Edges { group, .. } => ("group", format!("\"{group}\"")),
             };
             return Err(InputError::new(
                 format!("{name}.{key}"),
@@ -150,13 +198,22 @@ pub(crate) fn require_parts_selected(
 /// The traction parts of the `[[traction]]` sections, section i named `traction[i]`.
 pub(crate) fn traction_parts(
     sections: &[TractionSection],
+    gmsh: Option<&GmshMesh>,
 ) -> Result<Vec<TractionPart>, InputError> {
     sections
         .iter()
         .enumerate()
         .map(|(i, t)| {
             Ok(TractionPart {
-                boundary: selector(&format!("traction[{i}]"), &t.sides, t.where_.as_ref())?,
+                boundary: selector(
+                    &format!("traction[{i}]"),
+                    Selection {
+                        sides: &t.sides,
+                        where_: t.where_.as_ref(),
+                        group: t.group.as_ref(),
+                    },
+                    gmsh,
+                )?,
                 traction: vector(&format!("traction[{i}].value"), &t.value)?,
             })
         })

@@ -6,6 +6,9 @@
 //! title = "Fernández–Sofonea Test 2D, clamped sides, β = 1000"
 //!
 //! [geometry]                       # a rectangle of n_x × n_y squares, each cut along a diagonal
+//! # shape = "gmsh"                 # or a Gmsh mesh: file = "part.msh" (relative to the scene
+//! #                                # file's directory), optional scale = 1.0, offset = [0.0, 0.0]
+//! #                                # (x ↦ scale x + offset); see crate::mesh::gmsh
 //! origin = [0.0, 0.0]
 //! size = [6.0, 6.0]
 //! divisions = [24, 24]
@@ -31,8 +34,9 @@
 //! [body_force]
 //! value = [0.0, 0.0]               # numbers or expressions of x, y, t
 //!
-//! [[dirichlet]]                    # Γ1 parts: by side, or by an expression of x, y positive on the
-//! sides = ["left", "right"]        # part's edge midpoints: where = "1e-9 - x"
+//! [[dirichlet]]                    # Γ1 parts: by side, by an expression of x, y positive on the
+//! sides = ["left", "right"]        # part's edge midpoints (where = "1e-9 - x"), or by a boundary
+//!                                  # group of the Gmsh file (group = "clamp"): exactly one of them
 //! support = "clamped"              # "clamped" | "fix_x" | "fix_y"
 //!
 //! [[traction]]                     # Γ2 parts
@@ -46,6 +50,11 @@
 //! p0 = 2.0
 //! integration = "gauss2"           # "gauss2" (default) | "nodal"
 //!
+//! # [[region]]                     # Gmsh meshes: a 2D physical group with its own A and/or B
+//! # group = "insert"               # (the other triangles take [viscosity] and [elasticity])
+//! # viscosity = { law = "paper", mu = 60.0, eta = 40.0 }
+//! # elasticity = { law = "plane_strain", young = 400.0, poisson = 0.3 }
+//!
 //! [initial]
 //! displacement = [0.0, 0.0]
 //!
@@ -58,6 +67,7 @@
 //! start_at_first_equilibrium = false
 //! ```
 
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
@@ -65,13 +75,16 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, InputError};
 use crate::material::nonlinear::{SaturatingViscosity, SofteningElasticity};
 use crate::material::plane_law::{IsotropicLinear, PlaneLaw};
+use crate::mesh::gmsh::{GmshMesh, Placement};
 use crate::mesh::triangle::{Diagonal, Grading, RectangleSide, TriangleMesh};
-use crate::model::quasistatic::plane::{ContactIntegration, ContactPart, PlaneProblem};
+use crate::model::quasistatic::plane::{
+    ContactIntegration, ContactPart, MaterialRegion, PlaneProblem,
+};
 use crate::model::quasistatic::plane_output::{PlaneOutputRequest, PlaneSolution};
 use crate::model::quasistatic::plane_solver::{PlaneParams, PlaneSolver, SolverPath};
 use crate::model::quasistatic::scheme::TimeScheme;
 use crate::scene::boundary::{
-    dirichlet_parts, require_parts_selected, selector, traction_parts, vector,
+    dirichlet_parts, require_parts_selected, selector, traction_parts, vector, Selection,
 };
 pub use crate::scene::boundary::{DirichletSection, TractionSection};
 use crate::scene::common::{check_model, missing, parse_toml, reject_keys};
@@ -102,18 +115,44 @@ pub struct PlaneSceneFile {
     pub output: PlaneOutputSection,
     #[serde(default)]
     pub solver: PlaneSolverSection,
+    /// `[[region]]`: regions of a Gmsh mesh with their own materials.
+    #[serde(default)]
+    pub region: Vec<RegionSection>,
+    /// The directory that a Gmsh `file` is relative to (the scene file's; not a key: set by
+    /// [`crate::scene::Scene::load`]; `None`: the working directory).
+    #[serde(skip)]
+    pub base_dir: Option<PathBuf>,
 }
 
-/// `[geometry]`.
+/// `[[region]]`: a 2D physical group of the body's Gmsh file and its own A and/or B (a law left
+/// out is the scene's `[viscosity]` or `[elasticity]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSection {
+    pub group: String,
+    pub viscosity: Option<MaterialSection>,
+    pub elasticity: Option<MaterialSection>,
+}
+
+/// `[geometry]`: `shape = "rectangle"` (the default; `size`, `divisions`, `origin`, `diagonal`,
+/// `grading`, `graded_towards`) or `shape = "gmsh"` (`file`, `scale`, `offset`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GeometrySection {
+    /// `"rectangle"` (default) or `"gmsh"`.
+    pub shape: Option<String>,
+    /// The `.msh` file (format 4.1 ASCII or binary, or 2.2 ASCII), relative to the scene file.
+    pub file: Option<String>,
+    /// x ↦ scale x + offset on the file's coordinates (default 1 and [0, 0]).
+    pub scale: Option<f64>,
+    #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
+    pub offset: Option<[f64; 2]>,
     #[serde(default, deserialize_with = "super::fixed_array::exact")]
     pub origin: [f64; 2],
-    #[serde(deserialize_with = "super::fixed_array::exact")]
-    pub size: [f64; 2],
-    #[serde(deserialize_with = "super::fixed_array::exact")]
-    pub divisions: [usize; 2],
+    #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
+    pub size: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
+    pub divisions: Option<[usize; 2]>,
     #[serde(default)]
     pub diagonal: Diagonal,
     #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
@@ -185,6 +224,8 @@ pub struct ContactSection {
     pub sides: Vec<RectangleSide>,
     #[serde(rename = "where")]
     pub where_: Option<String>,
+    /// A boundary group of the body's Gmsh file.
+    pub group: Option<String>,
     pub law: String,
     pub beta: Option<f64>,
     pub p0: Option<FieldSpec>,
@@ -327,12 +368,16 @@ pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, 
     Ok(law)
 }
 
-/// The bytes a plane run holds, from the counts alone (before the mesh is built): per dof the
-/// operators, the Cholesky factor of a 2D grid (fill ~ n log₂ n) and the work vectors; per
-/// snapshot u and w at the nodes and stress and von Mises per triangle; per step a few values.
-fn plane_memory(file: &PlaneSceneFile) -> Result<(), Error> {
-    let [nx, ny] = file.geometry.divisions.map(|d| d as f64);
-    let nodes = (nx + 1.0) * (ny + 1.0);
+/// The bytes a plane run holds, from the counts alone (before the mesh is built, for a
+/// rectangle): per dof the operators, the Cholesky factor of a 2D grid (fill ~ n log₂ n) and the
+/// work vectors; per snapshot u and w at the nodes and stress and von Mises per triangle; per step
+/// a few values. `(field, written)` name the key that sets the mesh size.
+fn plane_memory(
+    file: &PlaneSceneFile,
+    nodes: f64,
+    triangles: f64,
+    (field, written): (&str, String),
+) -> Result<(), Error> {
     let dofs = 2.0 * nodes;
     let steps = match (&file.time.times, file.time.steps) {
         (Some(t), _) => t.len() as f64,
@@ -341,18 +386,167 @@ fn plane_memory(file: &PlaneSceneFile) -> Result<(), Error> {
     };
     let snapshots = file.output.times.len() as f64;
     let per_mesh = 8.0 * dofs * (70.0 + 4.0 * dofs.max(2.0).log2())
-        + 8.0 * snapshots * (4.0 * nodes + 8.0 * nx * ny);
+        + 8.0 * snapshots * (4.0 * nodes + 4.0 * triangles);
     let per_steps = 8.0 * 8.0 * (steps + 1.0);
-    let how = "8 B × [dofs (70 + 4 log₂ dofs) + snapshots (4 nodes + 8 n_x n_y) + 8 (N + 1)]";
+    let how = "8 B × [dofs (70 + 4 log₂ dofs) + snapshots (4 nodes + 4 triangles) + 8 (N + 1)]";
     let total = per_mesh + per_steps;
     if per_mesh >= per_steps {
-        let [dx, dy] = file.geometry.divisions;
-        let written = format!("[{dx}, {dy}]");
-        crate::scene::memory::require_memory("geometry.divisions", written, total, how)?;
+        crate::scene::memory::require_memory(field, written, total, how)?;
     } else {
         crate::scene::memory::require_memory("time.steps", steps, total, how)?;
     }
     Ok(())
+}
+
+/// The mesh of `[geometry]` (and the Gmsh file it was read from, for its groups).
+fn geometry_mesh(file: &PlaneSceneFile) -> Result<(TriangleMesh, Option<GmshMesh>), Error> {
+    let g = &file.geometry;
+    let given = [
+        ("file", g.file.is_some()),
+        ("scale", g.scale.is_some()),
+        ("offset", g.offset.is_some()),
+        ("origin", g.origin != [0.0, 0.0]),
+        ("size", g.size.is_some()),
+        ("divisions", g.divisions.is_some()),
+        ("diagonal", g.diagonal != Diagonal::default()),
+        ("grading", g.grading.is_some()),
+        ("graded_towards", g.graded_towards.is_some()),
+    ];
+    match g.shape.as_deref().unwrap_or("rectangle") {
+        "rectangle" => {
+            crate::scene::common::reject_keys(
+                "geometry",
+                ("shape", "rectangle"),
+                &given,
+                &[
+                    "origin",
+                    "size",
+                    "divisions",
+                    "diagonal",
+                    "grading",
+                    "graded_towards",
+                ],
+            )?;
+            let size = g
+                .size
+                .ok_or_else(|| missing("geometry.size", "[width, height]"))?;
+            let divisions = g
+                .divisions
+                .ok_or_else(|| missing("geometry.divisions", "[n_x, n_y]"))?;
+            let [nx, ny] = divisions.map(|d| d as f64);
+            plane_memory(
+                file,
+                (nx + 1.0) * (ny + 1.0),
+                2.0 * nx * ny,
+                (
+                    "geometry.divisions",
+                    format!("[{}, {}]", divisions[0], divisions[1]),
+                ),
+            )?;
+            let grading = match (g.grading, g.graded_towards) {
+                (None, _) => [Grading::UNIFORM; 2],
+                (Some(q), towards) => {
+                    let t = towards.unwrap_or([GradingDirection::Start; 2]);
+                    [0, 1].map(|k| Grading {
+                        exponent: q[k],
+                        towards_start: t[k] == GradingDirection::Start,
+                    })
+                }
+            };
+            let mesh =
+                TriangleMesh::graded_rectangle(g.origin, size, divisions, g.diagonal, grading)
+                    .map_err(crate::scene::common::mesh_field_as_written("geometry"))?;
+            Ok((mesh, None))
+        }
+        "gmsh" => {
+            crate::scene::common::reject_keys(
+                "geometry",
+                ("shape", "gmsh"),
+                &given,
+                &["file", "scale", "offset"],
+            )?;
+            let gmsh = read_gmsh(
+                "geometry",
+                g.file.as_ref(),
+                g.scale,
+                g.offset,
+                file.base_dir.as_deref(),
+            )?;
+            plane_memory(
+                file,
+                gmsh.mesh.nodes().len() as f64,
+                gmsh.mesh.triangles().len() as f64,
+                (
+                    "geometry.file",
+                    format!("\"{}\"", g.file.as_deref().unwrap_or("")),
+                ),
+            )?;
+            Ok((gmsh.mesh.clone(), Some(gmsh)))
+        }
+        other => Err(InputError::new(
+            "geometry.shape",
+            format!("\"{other}\""),
+            "\"rectangle\" or \"gmsh\"",
+        )
+        .into()),
+    }
+}
+
+/// The Gmsh mesh of a `{section}` with `shape = "gmsh"`: `file` relative to `base_dir`, mapped by
+/// x ↦ scale x + offset.
+pub(crate) fn read_gmsh(
+    section: &str,
+    file: Option<&String>,
+    scale: Option<f64>,
+    offset: Option<[f64; 2]>,
+    base_dir: Option<&std::path::Path>,
+) -> Result<GmshMesh, Error> {
+    let name = file.ok_or_else(|| {
+        missing(
+            format!("{section}.file"),
+            "the .msh file (relative to the scene file)",
+        )
+    })?;
+    let scale = crate::error::require_positive(&format!("{section}.scale"), scale.unwrap_or(1.0))?;
+    let offset = offset.unwrap_or([0.0, 0.0]);
+    for (k, o) in offset.iter().enumerate() {
+        crate::error::require_finite(&format!("{section}.offset[{k}]"), *o)?;
+    }
+    let path = match base_dir {
+        Some(dir) => dir.join(name),
+        None => PathBuf::from(name),
+    };
+    Ok(GmshMesh::read(&path, Placement { scale, offset })?)
+}
+
+/// The regions of `[[region]]`, section i named `region[i]`.
+fn regions(file: &PlaneSceneFile, gmsh: Option<&GmshMesh>) -> Result<Vec<MaterialRegion>, Error> {
+    let mut out = Vec::new();
+    for (i, r) in file.region.iter().enumerate() {
+        let prefix = format!("region[{i}]");
+        let Some(gmsh) = gmsh else {
+            return Err(InputError::new(
+                format!("{prefix}.group"),
+                format!("\"{}\"", r.group),
+                "a body read from a Gmsh file (geometry.shape = \"gmsh\") to name its regions",
+            )
+            .into());
+        };
+        let triangles = gmsh.region(&format!("{prefix}.group"), &r.group)?.to_vec();
+        let law =
+            |key: &str, section: &Option<MaterialSection>, default: &MaterialSection| match section
+            {
+                Some(m) => material(&format!("{prefix}.{key}"), m),
+                None => material(key, default),
+            };
+        out.push(MaterialRegion {
+            name: r.group.clone(),
+            triangles,
+            viscosity: law("viscosity", &r.viscosity, &file.viscosity)?,
+            elasticity: law("elasticity", &r.elasticity, &file.elasticity)?,
+        });
+    }
+    Ok(out)
 }
 
 impl PlaneScene {
@@ -364,30 +558,18 @@ impl PlaneScene {
     /// Validates a parsed scene file.
     pub fn from_file(file: PlaneSceneFile) -> Result<Self, Error> {
         check_model(&file.model, "plane")?;
-        plane_memory(&file)?;
-        let g = &file.geometry;
-        let grading = match (g.grading, g.graded_towards) {
-            (None, _) => [Grading::UNIFORM; 2],
-            (Some(q), towards) => {
-                let t = towards.unwrap_or([GradingDirection::Start; 2]);
-                [
-                    Grading {
-                        exponent: q[0],
-                        towards_start: t[0] == GradingDirection::Start,
-                    },
-                    Grading {
-                        exponent: q[1],
-                        towards_start: t[1] == GradingDirection::Start,
-                    },
-                ]
-            }
-        };
-        let mesh =
-            TriangleMesh::graded_rectangle(g.origin, g.size, g.divisions, g.diagonal, grading)
-                .map_err(crate::scene::common::mesh_field_as_written("geometry"))?;
+        let (mesh, gmsh) = geometry_mesh(&file)?;
         let contact = match &file.contact {
             Some(c) => Some(ContactPart {
-                boundary: selector("contact", &c.sides, c.where_.as_ref())?,
+                boundary: selector(
+                    "contact",
+                    Selection {
+                        sides: &c.sides,
+                        where_: c.where_.as_ref(),
+                        group: c.group.as_ref(),
+                    },
+                    gmsh.as_ref(),
+                )?,
                 law: Arc::new(crate::scene::foundation::foundation_law(
                     "contact",
                     &c.law,
@@ -404,8 +586,9 @@ impl PlaneScene {
             }),
             None => None,
         };
-        let dirichlet = dirichlet_parts(&file.dirichlet)?;
-        let traction = traction_parts(&file.traction)?;
+        let dirichlet = dirichlet_parts(&file.dirichlet, gmsh.as_ref())?;
+        let traction = traction_parts(&file.traction, gmsh.as_ref())?;
+        let regions = regions(&file, gmsh.as_ref())?;
         require_parts_selected(
             &mesh,
             &dirichlet,
@@ -417,6 +600,7 @@ impl PlaneScene {
             final_time: file.time.final_time,
             viscosity: material("viscosity", &file.viscosity)?,
             elasticity: material("elasticity", &file.elasticity)?,
+            regions,
             body_force: vector("body_force.value", &file.body_force.value)?,
             dirichlet,
             traction,

@@ -28,6 +28,12 @@ pub enum BoundarySelector {
     Sides(Vec<RectangleSide>),
     /// Edges whose midpoint satisfies the predicate.
     Predicate(BoundaryPredicate),
+    /// The edges of a named boundary group of a mesh file: sorted indices into
+    /// `mesh.boundary()`.
+    Edges {
+        group: String,
+        edges: Arc<Vec<usize>>,
+    },
 }
 
 impl fmt::Debug for BoundarySelector {
@@ -35,6 +41,9 @@ impl fmt::Debug for BoundarySelector {
         match self {
             BoundarySelector::Sides(s) => write!(f, "Sides({s:?})"),
             BoundarySelector::Predicate(_) => write!(f, "Predicate(..)"),
+            BoundarySelector::Edges { group, edges } => {
+                write!(f, "Edges({group:?}, {} edges)", edges.len())
+            }
         }
     }
 }
@@ -54,6 +63,7 @@ impl BoundarySelector {
                 let (a, b) = (mesh.nodes()[edge.nodes[0]], mesh.nodes()[edge.nodes[1]]);
                 p([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])])
             }
+            BoundarySelector::Edges { edges, .. } => edges.binary_search(&e).is_ok(),
         }
     }
 }
@@ -115,6 +125,16 @@ pub struct ContactPart {
     pub source: Option<[Field; 2]>,
 }
 
+/// A region of the body with its own materials (a 2D physical group of a mesh file): its
+/// triangles (sorted indices) take A and B from here instead of the problem's defaults.
+#[derive(Debug, Clone)]
+pub struct MaterialRegion {
+    pub name: String,
+    pub triangles: Vec<usize>,
+    pub viscosity: Arc<dyn PlaneLaw>,
+    pub elasticity: Arc<dyn PlaneLaw>,
+}
+
 /// The data of the plane problem.
 #[derive(Debug, Clone)]
 pub struct PlaneProblem {
@@ -124,6 +144,9 @@ pub struct PlaneProblem {
     pub viscosity: Arc<dyn PlaneLaw>,
     /// B (elasticity).
     pub elasticity: Arc<dyn PlaneLaw>,
+    /// Regions with their own A and B (disjoint); the triangles of no region take `viscosity`
+    /// and `elasticity`. Empty for a one-material body.
+    pub regions: Vec<MaterialRegion>,
     pub body_force: [Field; 2],
     pub dirichlet: Vec<DirichletPart>,
     pub traction: Vec<TractionPart>,
@@ -146,6 +169,44 @@ impl PlaneProblem {
         require_positive("final_time", self.final_time)?;
         self.viscosity.validate("viscosity")?;
         self.elasticity.validate("elasticity")?;
+        let mut owner: Vec<Option<usize>> = vec![None; self.mesh.triangles().len()];
+        for (r, region) in self.regions.iter().enumerate() {
+            region
+                .viscosity
+                .validate(&format!("region[{r}].viscosity"))?;
+            region
+                .elasticity
+                .validate(&format!("region[{r}].elasticity"))?;
+            if !region.triangles.windows(2).all(|w| w[0] < w[1]) {
+                return Err(InputError::new(
+                    format!("region[{r}]"),
+                    &region.name,
+                    "sorted, distinct triangle indices",
+                ));
+            }
+            for &t in &region.triangles {
+                match owner.get_mut(t) {
+                    None => {
+                        return Err(InputError::new(
+                            format!("region[{r}]"),
+                            format!("triangle {t}"),
+                            format!("triangles below {}", self.mesh.triangles().len()),
+                        ))
+                    }
+                    Some(Some(other)) => {
+                        return Err(InputError::new(
+                            format!("region[{r}].group"),
+                            format!("\"{}\"", region.name),
+                            format!(
+                                "a region disjoint from region[{other}] (\"{}\"): triangle {t} is in both",
+                                self.regions[*other].name
+                            ),
+                        ))
+                    }
+                    Some(slot) => *slot = Some(r),
+                }
+            }
+        }
         for (c, f) in self.body_force.iter().enumerate() {
             f.validate(&format!("body_force[{c}]"))?;
         }
@@ -221,9 +282,38 @@ impl PlaneProblem {
         Ok(roles)
     }
 
-    /// Whether A and B are both linear (the model then factors once and condenses the contact).
+    /// Whether A and B are linear in every region (the model then factors once and condenses the
+    /// contact).
     pub fn is_linear(&self) -> bool {
-        self.viscosity.as_linear().is_some() && self.elasticity.as_linear().is_some()
+        self.viscosity.as_linear().is_some()
+            && self.elasticity.as_linear().is_some()
+            && self
+                .regions
+                .iter()
+                .all(|r| r.viscosity.as_linear().is_some() && r.elasticity.as_linear().is_some())
+    }
+
+    /// The region of triangle `e`, if any.
+    fn region_of(&self, e: usize) -> Option<&MaterialRegion> {
+        self.regions
+            .iter()
+            .find(|r| r.triangles.binary_search(&e).is_ok())
+    }
+
+    /// A (viscosity) on triangle `e`.
+    pub fn viscosity_of(&self, e: usize) -> &dyn PlaneLaw {
+        match self.region_of(e) {
+            Some(r) => r.viscosity.as_ref(),
+            None => self.viscosity.as_ref(),
+        }
+    }
+
+    /// B (elasticity) on triangle `e`.
+    pub fn elasticity_of(&self, e: usize) -> &dyn PlaneLaw {
+        match self.region_of(e) {
+            Some(r) => r.elasticity.as_ref(),
+            None => self.elasticity.as_ref(),
+        }
     }
 }
 
@@ -273,6 +363,7 @@ impl PlaneProblem {
             final_time: 1.0,
             viscosity: Arc::new(IsotropicLinear::viscosity(30.0, 20.0)),
             elasticity: Arc::new(IsotropicLinear::plane_stress(100.0, 0.3)),
+            regions: Vec::new(),
             body_force: [Field::Constant(0.0), Field::Constant(0.0)],
             dirichlet: vec![DirichletPart {
                 boundary: BoundarySelector::Sides(vec![RectangleSide::Left, RectangleSide::Right]),

@@ -186,12 +186,12 @@ impl CondensedStep {
 pub fn assemble_linear(
     dofs: &PlaneDofs,
     pattern: &SymmetricPattern,
-    law: impl Fn(&[f64; 3]) -> [f64; 3],
+    law: impl Fn(usize, &[f64; 3]) -> [f64; 3],
     values: &mut [f64],
 ) {
     values.iter_mut().for_each(|v| *v = 0.0);
     for (e, el) in dofs.elements.iter().enumerate() {
-        let k = el.stiffness(&law);
+        let k = el.stiffness(|d| law(e, d));
         pattern.add_element(values, e, k.transpose().as_slice());
     }
 }

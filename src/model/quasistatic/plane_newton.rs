@@ -104,8 +104,9 @@ impl NewtonStep {
                 ul[p] = u_prev[d] + theta_k * wl[p];
             }
             let (ew, eu) = (el.strain(&wl), el.strain(&ul));
-            let sa = problem.viscosity.stress(&ew);
-            let sb = problem.elasticity.stress(&eu);
+            let (law_a, law_b) = (problem.viscosity_of(e), problem.elasticity_of(e));
+            let sa = law_a.stress(&ew);
+            let sb = law_b.stress(&eu);
             let s: Sym2 = [sa[0] + sb[0], sa[1] + sb[1], sa[2] + sb[2]];
             let f = el.internal_forces(&s);
             for p in 0..6 {
@@ -116,8 +117,8 @@ impl NewtonStep {
             }
             if jacobian {
                 let k = el.stiffness(|d| {
-                    let a = problem.viscosity.tangent_apply(&ew, d);
-                    let b = problem.elasticity.tangent_apply(&eu, d);
+                    let a = law_a.tangent_apply(&ew, d);
+                    let b = law_b.tangent_apply(&eu, d);
                     [
                         a[0] + theta_k * b[0],
                         a[1] + theta_k * b[1],

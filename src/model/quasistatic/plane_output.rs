@@ -79,13 +79,14 @@ pub fn element_stresses(
         .triangles()
         .iter()
         .zip(&dofs.elements)
-        .map(|(t, el)| {
+        .enumerate()
+        .map(|(e, (t, el))| {
             let ul: [f64; 6] = std::array::from_fn(|p| u[2 * t[p / 2] + p % 2]);
-            let sb = problem.elasticity.stress(&el.strain(&ul));
+            let sb = problem.elasticity_of(e).stress(&el.strain(&ul));
             match w {
                 Some(w) => {
                     let wl: [f64; 6] = std::array::from_fn(|p| w[2 * t[p / 2] + p % 2]);
-                    let sa = problem.viscosity.stress(&el.strain(&wl));
+                    let sa = problem.viscosity_of(e).stress(&el.strain(&wl));
                     [sa[0] + sb[0], sa[1] + sb[1], sa[2] + sb[2]]
                 }
                 None => sb,

@@ -191,18 +191,20 @@ impl PlaneSolver {
         let theta_k = self.scheme.theta() * k;
         let key = if theta_k == 0.0 { 0 } else { k.to_bits() };
         if !self.condensed.contains_key(&key) {
-            let (Some(a), Some(b)) = (
-                self.problem.viscosity.as_linear(),
-                self.problem.elasticity.as_linear(),
-            ) else {
-                unreachable!("the condensed path is chosen for linear laws only")
+            let problem = &self.problem;
+            let linear = |e: usize| match (
+                problem.viscosity_of(e).as_linear(),
+                problem.elasticity_of(e).as_linear(),
+            ) {
+                (Some(a), Some(b)) => (*a, *b),
+                _ => unreachable!("the condensed path is chosen for linear laws only"),
             };
-            let (a, b) = (*a, *b);
             let mut values = vec![0.0; self.dofs.pattern.nnz()];
             assemble_linear(
                 &self.dofs,
                 &self.dofs.pattern,
-                |e| {
+                |el, e| {
+                    let (a, b) = linear(el);
                     let sa = a.apply(e);
                     let sb = b.apply(e);
                     [
@@ -235,8 +237,8 @@ impl PlaneSolver {
     /// out −= Σ_e B ε(u) : ε(φ) (all dofs).
     fn subtract_elastic_forces(&self, u: &[f64], out: &mut [f64]) {
         let tri = self.problem.mesh.triangles();
-        let b = self.problem.elasticity.as_ref();
         for (e, el) in self.dofs.elements.iter().enumerate() {
+            let b = self.problem.elasticity_of(e);
             let t = tri[e];
             let ul: [f64; 6] = std::array::from_fn(|p| u[2 * t[p / 2] + p % 2]);
             let f = el.internal_forces(&b.stress(&el.strain(&ul)));

@@ -30,17 +30,14 @@ pub fn constitutive_ratio(a: &IsotropicLinear, b: &IsotropicLinear) -> f64 {
 /// eigenvalues of L⁻¹ K_B L⁻ᵀ).
 pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error> {
     let problem = solver.problem();
-    let (Some(a), Some(b)) = (
-        problem.viscosity.as_linear(),
-        problem.elasticity.as_linear(),
-    ) else {
+    if !problem.is_linear() {
         return Err(InputError::new(
             "viscosity",
             "(nonlinear)",
             "linear A and B for the explicit bound k λ_max(A⁻¹B) < 2",
         )
         .into());
-    };
+    }
     let dofs = solver.dofs();
     let n = dofs.n_solved();
     if n > DENSE_LIMIT {
@@ -51,9 +48,15 @@ pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error>
         )
         .into());
     }
-    let dense = |law: &IsotropicLinear| -> Mat<f64> {
+    // the linear law of element e (checked linear above)
+    let dense = |law: &dyn Fn(usize) -> Option<IsotropicLinear>| -> Mat<f64> {
         let mut values = vec![0.0; dofs.pattern.nnz()];
-        assemble_linear(dofs, &dofs.pattern, |e| law.apply(e), &mut values);
+        assemble_linear(
+            dofs,
+            &dofs.pattern,
+            |el, e| law(el).map_or([0.0; 3], |l| l.apply(e)),
+            &mut values,
+        );
         let mut m = Mat::<f64>::zeros(n, n);
         let (cp, ri) = (dofs.pattern.col_ptr(), dofs.pattern.row_idx());
         for j in 0..n {
@@ -64,7 +67,10 @@ pub fn explicit_stability_eigenvalue(solver: &PlaneSolver) -> Result<f64, Error>
         }
         m
     };
-    let (ka, kb) = (dense(a), dense(b));
+    let (ka, kb) = (
+        dense(&|e| problem.viscosity_of(e).as_linear().copied()),
+        dense(&|e| problem.elasticity_of(e).as_linear().copied()),
+    );
     // every factorization sequential (`Par::Seq`): the same bits whatever the thread count
     let mut l = cholesky_factor(ka.as_ref()).map_err(|row| SolveError::Singular {
         operator: "K_A (viscosity)".into(),

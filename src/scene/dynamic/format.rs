@@ -34,6 +34,10 @@ pub struct DynamicSceneFile {
     pub output: DynamicOutputSection,
     #[serde(default)]
     pub solver: DynamicSolverSection,
+    /// The directory that a Gmsh `body.file` is relative to (the scene file's; not a key: set by
+    /// [`crate::scene::Scene::load`]; `None`: the working directory).
+    #[serde(skip)]
+    pub base_dir: Option<std::path::PathBuf>,
 }
 
 /// `[body]`.
@@ -66,6 +70,11 @@ pub struct BodySection {
     pub outer: Option<f64>,
     pub radial: Option<usize>,
     pub around: Option<usize>,
+    // gmsh: the .msh file (relative to the scene file), x ↦ scale x + offset
+    pub file: Option<String>,
+    pub scale: Option<f64>,
+    #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
+    pub offset: Option<[f64; 2]>,
 }
 
 /// `[material]`.
@@ -122,6 +131,8 @@ pub struct DynamicContactSection {
     pub sides: Vec<RectangleSide>,
     #[serde(rename = "where")]
     pub where_: Option<String>,
+    /// A boundary group of the body's Gmsh file (`shape = "gmsh"`).
+    pub group: Option<String>,
     // bar
     pub end: Option<BarEnd>,
     pub wall: Option<f64>,

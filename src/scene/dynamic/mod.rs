@@ -7,7 +7,9 @@
 //! title = "neo-Hookean ring thrown obliquely at the foundation"
 //!
 //! [body]
-//! shape = "annulus"            # "bar" | "rectangle" | "disk" | "annulus"
+//! shape = "annulus"            # "bar" | "rectangle" | "disk" | "annulus" | "gmsh" (file =
+//!                               # "part.msh" relative to the scene file, optional scale, offset;
+//!                               # boundary parts then may select group = "name" of the file)
 //! center = [0.0, 0.52]         # disk, annulus
 //! inner = 0.3                  # annulus
 //! outer = 0.5                  # annulus; disk: radius = 0.5, rings = 12
@@ -131,13 +133,16 @@ impl DynamicScene {
             ("outer", b.outer.is_some()),
             ("radial", b.radial.is_some()),
             ("around", b.around.is_some()),
+            ("file", b.file.is_some()),
+            ("scale", b.scale.is_some()),
+            ("offset", b.offset.is_some()),
         ];
         let (body, contact, u0, v0) = if b.shape == "bar" {
             let allowed = ["length", "elements", "area", "supports"];
             reject_keys("body", ("shape", "bar"), &given, &allowed)?;
             bar::bar(&file)?
         } else {
-            plane::plane(&file, plane::mesh(b, &given)?)?
+            plane::plane(&file, plane::mesh(b, &given, file.base_dir.as_deref())?)?
         };
         let dyn_body: Arc<dyn ElasticBody> = match &body {
             SceneBody::Bar(b) => b.clone(),

@@ -7,21 +7,40 @@ use crate::error::{Error, InputError};
 use crate::field::Field;
 use crate::material::hyperelastic::{Hyperelastic2d, LinearElastic, NeoHooke, StVenantKirchhoff};
 use crate::mesh::generators::{annulus, disk};
+use crate::mesh::gmsh::GmshMesh;
 use crate::mesh::triangle::{Grading, TriangleMesh};
 use crate::model::dynamic::contact_model::ContactModel;
 use crate::model::dynamic::plane_body::{PlaneBody, PlaneBodyData};
 use crate::model::quasistatic::plane::BoundarySelector;
-use crate::scene::boundary::{dirichlet_parts, require_parts_selected, selector, traction_parts};
+use crate::scene::boundary::{
+    dirichlet_parts, require_parts_selected, selector, traction_parts, Selection,
+};
 use crate::scene::common::mesh_field_as_written;
 use crate::scene::common::{missing, reject_keys};
 use crate::scene::dynamic::body::{BodyParts, SceneBody};
 use crate::scene::dynamic::contact::{friction, treatment};
-use crate::scene::dynamic::format::{pair, BodySection, DynamicSceneFile};
+use crate::scene::dynamic::format::{pair, BodySection, DynamicContactSection, DynamicSceneFile};
+use crate::scene::plane::read_gmsh;
 
-/// The mesh of the plane shape `b.shape` (`rectangle`, `disk` or `annulus`) from its keys;
-/// `given` lists which keys of `[body]` are present (a key of another shape is an error).
-pub(super) fn mesh(b: &BodySection, given: &[(&str, bool)]) -> Result<TriangleMesh, Error> {
-    Ok(match b.shape.as_str() {
+/// The mesh of the plane shape `b.shape` (`rectangle`, `disk`, `annulus` or `gmsh`) from its
+/// keys, and the Gmsh file it was read from (for its groups); `given` lists which keys of
+/// `[body]` are present (a key of another shape is an error).
+pub(super) fn mesh(
+    b: &BodySection,
+    given: &[(&str, bool)],
+    base_dir: Option<&std::path::Path>,
+) -> Result<(TriangleMesh, Option<GmshMesh>), Error> {
+    if b.shape == "gmsh" {
+        reject_keys(
+            "body",
+            ("shape", "gmsh"),
+            given,
+            &["file", "scale", "offset"],
+        )?;
+        let gmsh = read_gmsh("body", b.file.as_ref(), b.scale, b.offset, base_dir)?;
+        return Ok((gmsh.mesh.clone(), Some(gmsh)));
+    }
+    let mesh = match b.shape.as_str() {
         "rectangle" => {
             reject_keys(
                 "body",
@@ -80,16 +99,30 @@ pub(super) fn mesh(b: &BodySection, given: &[(&str, bool)]) -> Result<TriangleMe
             return Err(InputError::new(
                 "body.shape",
                 format!("\"{other}\""),
-                "\"bar\", \"rectangle\", \"disk\" or \"annulus\"",
+                "\"bar\", \"rectangle\", \"disk\", \"annulus\" or \"gmsh\"",
             )
             .into())
         }
+    };
+    Ok((mesh, None))
+}
+
+/// The boundary part a dynamic `[contact]` section selects, if it selects one.
+fn contact_selection(c: &DynamicContactSection) -> Option<Selection<'_>> {
+    (!c.sides.is_empty() || c.where_.is_some() || c.group.is_some()).then_some(Selection {
+        sides: &c.sides,
+        where_: c.where_.as_ref(),
+        group: c.group.as_ref(),
     })
 }
 
 /// The plane body on `mesh` with the material, boundary parts, body force, contact and initial
 /// state of the scene `file`.
-pub(super) fn plane(file: &DynamicSceneFile, mesh: TriangleMesh) -> Result<BodyParts, Error> {
+pub(super) fn plane(
+    file: &DynamicSceneFile,
+    (mesh, gmsh): (TriangleMesh, Option<GmshMesh>),
+) -> Result<BodyParts, Error> {
+    let gmsh = gmsh.as_ref();
     let m = &file.material;
     let poisson = m
         .poisson
@@ -115,13 +148,11 @@ pub(super) fn plane(file: &DynamicSceneFile, mesh: TriangleMesh) -> Result<BodyP
             .into())
         }
     };
-    let dirichlet = dirichlet_parts(&file.dirichlet)?;
-    let traction = traction_parts(&file.traction)?;
-    let contact_part = match file.contact.as_ref() {
-        Some(c) if !c.sides.is_empty() || c.where_.is_some() => {
-            Some(selector("contact", &c.sides, c.where_.as_ref())?)
-        }
-        _ => None,
+    let dirichlet = dirichlet_parts(&file.dirichlet, gmsh)?;
+    let traction = traction_parts(&file.traction, gmsh)?;
+    let contact_part = match file.contact.as_ref().and_then(contact_selection) {
+        Some(s) => Some(selector("contact", s, gmsh)?),
+        None => None,
     };
     require_parts_selected(&mesh, &dirichlet, &traction, contact_part.as_ref())?;
     let body_force = match &file.body_force {
@@ -149,10 +180,9 @@ pub(super) fn plane(file: &DynamicSceneFile, mesh: TriangleMesh) -> Result<BodyP
                 )
                 .into());
             }
-            let boundary = if c.sides.is_empty() && c.where_.is_none() {
-                BoundarySelector::Predicate(Arc::new(|_| true))
-            } else {
-                selector("contact", &c.sides, c.where_.as_ref())?
+            let boundary = match contact_selection(c) {
+                None => BoundarySelector::Predicate(Arc::new(|_| true)),
+                Some(s) => selector("contact", s, gmsh)?,
             };
             Some(ContactModel::plane_half_space(
                 &body,

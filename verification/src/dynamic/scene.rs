@@ -128,6 +128,7 @@ pub fn error_json(e: &LabError) -> serde_json::Value {
         }),
         LabError::Input(_) => json!({ "message": e.to_string(), "kind": "input" }),
         LabError::Scene { .. } => json!({ "message": e.to_string(), "kind": "scene" }),
+        LabError::Mesh(_) => json!({ "message": e.to_string(), "kind": "mesh" }),
     }
 }
 

@@ -328,6 +328,7 @@ impl PlaneManufactured {
             final_time: self.final_time,
             viscosity: self.viscosity.solver_law(),
             elasticity: self.elasticity.solver_law(),
+            regions: Vec::new(),
             body_force: body,
             dirichlet: vec![DirichletPart {
                 boundary: BoundarySelector::side(RectangleSide::Left),
