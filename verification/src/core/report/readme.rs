@@ -6,8 +6,9 @@
 //! fails when a block differs from what the reports give, and a test of the verification crate
 //! does the same, so a number in the README cannot drift from the reports.
 //!
-//! Blocks: `evidence` (per case: verdict, gates, the fitted rates grouped by expected rate) and
-//! `benchmarks` (criterion's means against the budgets).
+//! Blocks: `evidence` (per case: verdict, gates, the fitted rates grouped by expected rate),
+//! `benchmarks` (criterion's means against the budgets) and `tiers` (each tier's cases and their
+//! recorded time).
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -32,7 +33,10 @@ fn case_reports(dir: &Path) -> Result<Vec<Value>, String> {
         .map(|e| e.path())
         .filter(|p| {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            name.ends_with(".json") && !name.ends_with(".timings.json") && name != "benchmarks.json"
+            name.ends_with(".json")
+                && !name.ends_with(".timings.json")
+                && name != "benchmarks.json"
+                && name != crate::core::report::manifest::MANIFEST
         })
         .collect();
     paths.sort();
@@ -118,6 +122,57 @@ pub fn evidence(reports: &Path) -> Result<String, String> {
     Ok(s)
 }
 
+/// The `tiers` block: per tier of `verify` (they nest: quick ⊂ default ⊂ full) its cases and the
+/// sum of their run times in the committed full run (`<case>.timings.json`, the 2-core reference
+/// machine), beside the tier's budget.
+pub fn tiers(reports: &Path) -> Result<String, String> {
+    let mut s = String::from(
+        "| command | cases | their recorded time | budget | what for |\n|---|---|---|---|---|\n",
+    );
+    let cases = case_reports(reports)?;
+    let rank = |t: &str| match t {
+        "quick" => 0,
+        "default" => 1,
+        _ => 2,
+    };
+    for (tier, command, budget, purpose) in [
+        (0, "`verify --quick`", "20 s", "CI; a check while you work"),
+        (
+            1,
+            "`verify`",
+            "90 s",
+            "what to run first: every model family and every kind of claim (rates, identities, \
+             extremes, exact and pinned values, audits, performance)",
+        ),
+        (
+            2,
+            "`verify --full`",
+            "none",
+            "the long studies too (finest levels, the 10⁴-scene fuzz campaign, the large \
+             work–precision and performance runs): the committed `reports/`",
+        ),
+    ] {
+        let mut n = 0;
+        let mut seconds = 0.0;
+        for r in &cases {
+            if rank(r["tier"].as_str().unwrap_or("full")) > tier {
+                continue;
+            }
+            n += 1;
+            let id = r["id"].as_str().unwrap_or("?");
+            let t = read(&reports.join(format!("{id}.timings.json")))?;
+            seconds += t
+                .pointer("/leaves/~1wall_seconds")
+                .and_then(Value::as_f64)
+                .ok_or_else(|| format!("{id}.timings.json: no /wall_seconds"))?;
+        }
+        s.push_str(&format!(
+            "| {command} | {n} | {seconds:.1} s | {budget} | {purpose} |\n"
+        ));
+    }
+    Ok(s)
+}
+
 /// The `benchmarks` block, from `reports/benchmarks.json`.
 pub fn benchmarks(reports: &Path) -> Result<String, String> {
     let b = read(&reports.join("benchmarks.json"))?;
@@ -150,6 +205,7 @@ pub fn render(reports: &Path) -> Result<Blocks, String> {
     let mut b = Blocks::new();
     b.insert("evidence".into(), evidence(reports)?);
     b.insert("benchmarks".into(), benchmarks(reports)?);
+    b.insert("tiers".into(), tiers(reports)?);
     Ok(b)
 }
 
