@@ -17,12 +17,15 @@ use crate::scene::field_spec::FieldSpec;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DirichletSection {
+    /// The sides of the rectangle this part holds; either this or `where`.
     #[serde(default)]
     pub sides: Vec<RectangleSide>,
     /// Instead of `sides`: an expression of x, y selecting the boundary edges whose midpoint makes
     /// it positive (e.g. `"1e-9 - x"` for the edges on x = 0).
     #[serde(rename = "where")]
     pub where_: Option<String>,
+    /// Which displacement components the part holds at zero (u = 0 on Γ1: (2.3) quasistatic,
+    /// (1.16) dynamic).
     pub support: Support,
 }
 
@@ -30,10 +33,15 @@ pub struct DirichletSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TractionSection {
+    /// The sides of the rectangle this part loads; either this or `where`.
     #[serde(default)]
     pub sides: Vec<RectangleSide>,
+    /// Instead of `sides`: an expression of x, y that is positive at the midpoints of the part's
+    /// edges.
     #[serde(rename = "where")]
     pub where_: Option<String>,
+    /// The traction f2 on the part, [x, y]: numbers or expressions of x, y, t (σν = f2, (2.4)
+    /// quasistatic; Πν = f2, (1.17) dynamic).
     #[serde(deserialize_with = "super::fixed_array::exact")]
     pub value: [FieldSpec; 2],
 }

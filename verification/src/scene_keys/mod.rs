@@ -26,7 +26,7 @@ pub struct ModelKeys {
     pub root: String,
     /// Its file under `src/`.
     pub file: String,
-    /// The first paragraph of the struct's doc comment.
+    /// What the model is: the meaning of its `model` key (else the struct's doc).
     pub doc: String,
     pub rows: Vec<Row>,
 }
@@ -61,7 +61,10 @@ fn model_keys(
         model,
         root: root.to_string(),
         file: file.to_string(),
-        doc: types::first_paragraph(&def.doc),
+        doc: rows
+            .iter()
+            .find(|r| r.path == "model" && !r.meaning.is_empty())
+            .map_or_else(|| types::first_paragraph(&def.doc), |r| r.meaning.clone()),
         rows,
     })
 }
