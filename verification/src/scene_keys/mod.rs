@@ -15,21 +15,8 @@ pub mod walk;
 use std::path::Path;
 use std::process::ExitCode;
 
+pub use crate::scene_keys::models::ModelKeys;
 use crate::scene_keys::source::Source;
-use crate::scene_keys::walk::Row;
-
-/// The keys of one model.
-#[derive(Debug, Clone)]
-pub struct ModelKeys {
-    pub model: &'static str,
-    /// The scene-file struct.
-    pub root: String,
-    /// Its file under `src/`.
-    pub file: String,
-    /// What the model is: the meaning of its `model` key (else the struct's doc).
-    pub doc: String,
-    pub rows: Vec<Row>,
-}
 
 /// The keys of every model, from the solver crate's source directory `src`.
 pub fn generate(src: &Path) -> Result<Vec<ModelKeys>, String> {

@@ -4,6 +4,19 @@
 
 use crate::scene_keys::walk::Row;
 
+/// The keys of one model.
+#[derive(Debug, Clone)]
+pub struct ModelKeys {
+    pub model: &'static str,
+    /// The scene-file struct.
+    pub root: String,
+    /// Its file under `src/`.
+    pub file: String,
+    /// What the model is: the meaning of its `model` key (else the struct's doc).
+    pub doc: String,
+    pub rows: Vec<Row>,
+}
+
 /// (model, the scene-file struct, its file under `src/`), in the order of
 /// `contactlab::scene::any::MODELS`.
 pub const MODELS: [(&str, &str, &str); 6] = [

@@ -1,7 +1,7 @@
 //! The Markdown of `docs/scenes.md`: per model, one table `key | type | required / default |
 //! meaning`, the accepted values of enum-valued keys in the meaning.
 
-use crate::scene_keys::ModelKeys;
+use crate::scene_keys::models::ModelKeys;
 
 /// The whole reference.
 pub fn render(models: &[ModelKeys]) -> String {
