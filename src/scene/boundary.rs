@@ -19,6 +19,7 @@ use crate::scene::field_spec::FieldSpec;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DirichletSection {
+    /// The sides of the rectangle this part holds; either this or `where`.
     #[serde(default)]
     pub sides: Vec<RectangleSide>,
     /// Instead of `sides`: an expression of x, y selecting the boundary edges whose midpoint makes
@@ -28,6 +29,8 @@ pub struct DirichletSection {
     /// Instead of `sides` or `where`: a boundary physical group (dimension 1) of the body's Gmsh
     /// file (`shape = "gmsh"`), by name.
     pub group: Option<String>,
+    /// Which displacement components the part holds at zero (u = 0 on Γ1: (2.3) quasistatic,
+    /// (1.16) dynamic).
     pub support: Support,
 }
 
@@ -35,12 +38,17 @@ pub struct DirichletSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TractionSection {
+    /// The sides of the rectangle this part loads; either this or `where`.
     #[serde(default)]
     pub sides: Vec<RectangleSide>,
+    /// Instead of `sides`: an expression of x, y that is positive at the midpoints of the part's
+    /// edges.
     #[serde(rename = "where")]
     pub where_: Option<String>,
     /// A boundary group of the body's Gmsh file (as in `[[dirichlet]]`).
     pub group: Option<String>,
+    /// The traction f2 on the part, [x, y]: numbers or expressions of x, y, t (σν = f2, (2.4)
+    /// quasistatic; Πν = f2, (1.17) dynamic).
     #[serde(deserialize_with = "super::fixed_array::exact")]
     pub value: [FieldSpec; 2],
 }

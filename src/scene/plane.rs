@@ -95,24 +95,38 @@ use crate::time::grid::TimeGrid;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneSceneFile {
+    /// `"plane"`: the quasistatic Kelvin–Voigt plane body, problem P of Fernández & Sofonea
+    /// (docs/quasistatic.md).
     pub model: String,
+    /// A title for the reports and plots (default: none).
     #[serde(default)]
     pub title: String,
+    /// `[geometry]`: the body, a rectangle of n_x × n_y squares each cut into two P1 triangles.
     pub geometry: GeometrySection,
+    /// `[time]`: the time grid of [0, T] and the scheme.
     pub time: PlaneTimeSection,
+    /// `[viscosity]`: the viscous law A of σ = A ε(u̇) + B ε(u) (2.1), strongly monotone (2.10).
     pub viscosity: MaterialSection,
+    /// `[elasticity]`: the elastic law B of σ = A ε(u̇) + B ε(u) (2.1), Lipschitz (2.11).
     pub elasticity: MaterialSection,
+    /// `[body_force]`: the body force f0 of Div σ + f0 = 0 (2.2) (default: none).
     #[serde(default)]
     pub body_force: VectorSection,
+    /// `[[dirichlet]]`: the parts of Γ1 (2.3), each held by its `support` (default: none).
     #[serde(default)]
     pub dirichlet: Vec<DirichletSection>,
+    /// `[[traction]]`: the parts of Γ2 (2.4), each loaded by a traction f2 = σν (default: none).
     #[serde(default)]
     pub traction: Vec<TractionSection>,
+    /// `[contact]`: Γ3 and its foundation law (2.5) (absent: no contact).
     pub contact: Option<ContactSection>,
+    /// `[initial]`: the initial displacement u0 (2.6) (default 0).
     #[serde(default)]
     pub initial: InitialSection,
+    /// `[output]`: the snapshot times.
     #[serde(default)]
     pub output: PlaneOutputSection,
+    /// `[solver]`: the solver path and the start at the first equilibrium.
     #[serde(default)]
     pub solver: PlaneSolverSection,
     /// `[[region]]`: regions of a Gmsh mesh with their own materials.
@@ -129,8 +143,14 @@ pub struct PlaneSceneFile {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RegionSection {
+    /// The 2D physical group (a named surface) of the Gmsh file whose triangles take these laws;
+    /// regions must not overlap.
     pub group: String,
+    /// The viscosity A of the region's triangles, with the keys of `[viscosity]` (absent: the
+    /// scene's `[viscosity]`).
     pub viscosity: Option<MaterialSection>,
+    /// The elasticity B of the region's triangles, with the keys of `[elasticity]` (absent: the
+    /// scene's `[elasticity]`).
     pub elasticity: Option<MaterialSection>,
 }
 
@@ -141,22 +161,33 @@ pub struct RegionSection {
 pub struct GeometrySection {
     /// `"rectangle"` (default) or `"gmsh"`.
     pub shape: Option<String>,
-    /// The `.msh` file (format 4.1 ASCII or binary, or 2.2 ASCII), relative to the scene file.
+    /// The `.msh` file (format 4.1 ASCII or binary, or 2.2 ASCII), relative to the scene file
+    /// (`shape = "gmsh"` only).
     pub file: Option<String>,
-    /// x ↦ scale x + offset on the file's coordinates (default 1 and [0, 0]).
+    /// x ↦ scale x + offset on the file's coordinates: the scale (default 1; `shape = "gmsh"`).
     pub scale: Option<f64>,
+    /// x ↦ scale x + offset on the file's coordinates: the offset [x, y] (default [0, 0];
+    /// `shape = "gmsh"`).
     #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub offset: Option<[f64; 2]>,
+    /// [x_0, y_0]: the lower-left corner of the rectangle (default [0, 0]).
     #[serde(default, deserialize_with = "super::fixed_array::exact")]
     pub origin: [f64; 2],
+    /// [width, height] > 0: the sides of the rectangle (required for `shape = "rectangle"`).
     #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub size: Option<[f64; 2]>,
+    /// [n_x, n_y] ≥ 1: the squares along x and y, 2 n_x n_y triangles (required for the
+    /// rectangle).
     #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub divisions: Option<[usize; 2]>,
+    /// Which diagonal cuts each square (default `"up"`).
     #[serde(default)]
     pub diagonal: Diagonal,
+    /// [q_x, q_y] in [1, 10]: power-law grading per direction (absent: uniform).
     #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub grading: Option<[f64; 2]>,
+    /// The end each graded direction refines towards, `"start"` (x_0, y_0) or `"end"` (default
+    /// [`"start"`, `"start"`]).
     #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub graded_towards: Option<[GradingDirection; 2]>,
 }
@@ -165,7 +196,9 @@ pub struct GeometrySection {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum GradingDirection {
+    /// Refine towards the start, x = x_0 (or y = y_0).
     Start,
+    /// Refine towards the end, x = x_0 + width (or y = y_0 + height).
     End,
 }
 
@@ -173,10 +206,16 @@ pub enum GradingDirection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneTimeSection {
+    /// T > 0: the end of the time interval.
     pub final_time: f64,
+    /// N ≥ 1: the number of steps (uniform, or graded by `grading`); either this or `times`.
     pub steps: Option<usize>,
+    /// q in [1, 10]: power-law graded times t_n = T (n/N)^q (default 1: uniform).
     pub grading: Option<f64>,
+    /// Explicit times 0 = t_0 < … < t_N = T instead of `steps`.
     pub times: Option<Vec<f64>>,
+    /// The time treatment of the elastic term B ε(u) (docs/quasistatic.md, the fully discrete
+    /// scheme; default `"explicit"`, the paper's).
     #[serde(default)]
     pub scheme: TimeScheme,
 }
@@ -185,18 +224,37 @@ pub struct PlaneTimeSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSection {
+    /// The law and its keys: `"plane_stress"`, `"plane_strain"` (`young`, `poisson`), `"isotropic"`
+    /// (`a1`, `a2`), `"paper"` (`mu`, `eta`), `"saturating"` (`mu`, `eta`, `gamma`, `tau_c`),
+    /// `"softening"` (`lambda`, `shear`, `delta`, `eps_c`); other keys are errors.
     pub law: String,
+    /// E > 0, laws `"plane_stress"` and `"plane_strain"`: Young's modulus (docs/quasistatic.md,
+    /// Test 2D).
     pub young: Option<f64>,
+    /// κ, laws `"plane_stress"` (−1 < κ < 1) and `"plane_strain"` (−1 < κ < 1/2): Poisson's ratio.
     pub poisson: Option<f64>,
+    /// a1, law `"isotropic"`: (L τ) = a1 tr(τ) I + a2 τ, positive definite (a2 > 0, a2 + 2 a1 > 0).
     pub a1: Option<f64>,
+    /// a2 > 0, law `"isotropic"`: the coefficient of τ in a1 tr(τ) I + a2 τ.
     pub a2: Option<f64>,
+    /// μ, laws `"paper"` and `"saturating"`: the coefficient of tr(τ) I in μ tr(τ) I + η τ (Test
+    /// 2D; η + 2μ > 0).
     pub mu: Option<f64>,
+    /// η > 0, laws `"paper"` and `"saturating"`: the coefficient of τ in μ tr(τ) I + η τ.
     pub eta: Option<f64>,
+    /// γ ≥ 0, law `"saturating"`: the saturation stress of the term γ tanh(|τ|/τ_c) τ/|τ|.
     pub gamma: Option<f64>,
+    /// τ_c > 0, law `"saturating"`: the strain rate at which γ tanh(|τ|/τ_c) saturates.
     pub tau_c: Option<f64>,
+    /// λ, law `"softening"`: the coefficient of tr(ε) I in λ tr(ε) I + 2G (1 − δ |ε|²/(|ε|² +
+    /// ε_c²)) ε (G + λ > 0).
     pub lambda: Option<f64>,
+    /// G > 0, law `"softening"`: the shear modulus at small strain.
     pub shear: Option<f64>,
+    /// δ in [0, 1), law `"softening"`: the shear stiffness falls from 2G to 2G(1 − δ) at large
+    /// strain.
     pub delta: Option<f64>,
+    /// ε_c > 0, law `"softening"`: the strain around which the shear stiffness softens.
     pub eps_c: Option<f64>,
 }
 
@@ -204,6 +262,7 @@ pub struct MaterialSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct VectorSection {
+    /// The body force [f0_x, f0_y] of (2.2): numbers or expressions of x, y, t.
     #[serde(deserialize_with = "super::fixed_array::exact")]
     pub value: [FieldSpec; 2],
 }
@@ -220,16 +279,27 @@ impl Default for VectorSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSection {
+    /// The sides of the rectangle that form Γ3; either this or `where`.
     #[serde(default)]
     pub sides: Vec<RectangleSide>,
+    /// Instead of `sides`: an expression of x, y that is positive at the midpoints of the Γ3 edges.
     #[serde(rename = "where")]
     pub where_: Option<String>,
     /// A boundary group of the body's Gmsh file.
     pub group: Option<String>,
+    /// The foundation law p_ν(r) of the normal velocity r (docs/quasistatic.md): `"linear"` (2.7) β
+    /// r, `"lubricated"` (2.8) β r_+ + p0, or `"prescribed"` (2.9) S.
     pub law: String,
+    /// β ≥ 0, the damper of laws `"linear"` and `"lubricated"` (required there, refused for
+    /// `"prescribed"`).
     pub beta: Option<f64>,
+    /// p0, the oil pressure of law `"lubricated"` (required there, refused otherwise): a number ≥ 0
+    /// or an expression of x, y, t.
     pub p0: Option<FieldSpec>,
+    /// S, the prescribed normal stress of law `"prescribed"` (required there, refused otherwise): a
+    /// number or an expression of x, y, t.
     pub stress: Option<FieldSpec>,
+    /// How the contact integral ∫_Γ3 p_ν(w_ν) v_ν is computed (default `"gauss2"`).
     #[serde(default)]
     pub integration: ContactIntegration,
     /// The boundary source g on Γ3 (manufactured solutions).
@@ -241,6 +311,7 @@ pub struct ContactSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct InitialSection {
+    /// [u0_x, u0_y]: numbers or expressions of x, y, zero on Γ1 (default [0, 0]).
     #[serde(default, deserialize_with = "super::fixed_array::exact_option")]
     pub displacement: Option<[FieldSpec; 2]>,
 }
@@ -249,6 +320,8 @@ pub struct InitialSection {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneOutputSection {
+    /// Snapshot times, each a time of the grid: u and w at the nodes, the stress and its von Mises
+    /// norm per triangle (default: none).
     #[serde(default)]
     pub times: Vec<f64>,
     /// `verify scene` also writes one `.vtu` per snapshot and a `.pvd` collection (ParaView):
@@ -261,8 +334,12 @@ pub struct PlaneOutputSection {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneSolverSection {
+    /// Which solver runs each step (default `"auto"`).
     #[serde(default)]
     pub path: SolverPath,
+    /// When Γ1 leaves a rigid motion free and the first steps have no equilibrium, keep u0 until
+    /// the first step that has one (default false: such a step is an error; docs/quasistatic.md,
+    /// Test 2D).
     #[serde(default)]
     pub start_at_first_equilibrium: bool,
 }

@@ -65,15 +65,25 @@ use crate::time::grid::TimeGrid;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RodSceneFile {
+    /// `"rod"`: the quasistatic Kelvin–Voigt rod, problem T1D of Fernández & Sofonea
+    /// (docs/quasistatic.md).
     pub model: String,
+    /// A title for the reports and plots (default: none).
     #[serde(default)]
     pub title: String,
+    /// `[rod]`: the rod, its material and its data.
     pub rod: RodSection,
+    /// `[foundation]`: the foundation law p_ν at the contact end x = L.
     pub foundation: FoundationSection,
+    /// `[mesh]`: the mesh of (0, L): `elements` (with `grading`) or explicit `nodes`.
     pub mesh: MeshSection,
+    /// `[time]`: the time grid of [0, T] (`steps` with `grading`, or explicit `times`) and the
+    /// scheme.
     pub time: TimeSection,
+    /// `[output]`: what is recorded besides the end history: snapshots and probes.
     #[serde(default)]
     pub output: OutputSection,
+    /// `[solver]`: the Newton iteration at the contact end and the load quadrature.
     #[serde(default)]
     pub solver: SolverSection,
     /// `[exact]`: the exact solution the verification suite measures this scene against
@@ -85,12 +95,18 @@ pub struct RodSceneFile {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RodSection {
+    /// L > 0 (m): the rod is (0, L), clamped at x = 0 and in contact at x = L.
     pub length: f64,
+    /// T > 0 (s): the end of the time interval.
     pub final_time: f64,
+    /// a > 0 (N·s/m): the viscous modulus of σ = a u_xt + b u_x (docs/quasistatic.md, Test T1D).
     pub viscosity: f64,
+    /// b > 0 (N/m): the elastic modulus of σ = a u_xt + b u_x.
     pub elasticity: f64,
+    /// f0 (N/m), the body force of σ_x + f0 = 0: a number or an expression of x and t (default 0).
     #[serde(default)]
     pub load: FieldSpec,
+    /// u0 (m): a number or an expression of x, with u0(0) = 0 (default 0).
     #[serde(default)]
     pub initial_displacement: FieldSpec,
 }
@@ -99,9 +115,17 @@ pub struct RodSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FoundationSection {
+    /// The foundation law p_ν(r) of the end velocity r (docs/quasistatic.md): `"linear"` (2.7) β r,
+    /// `"lubricated"` (2.8) β r_+ + p0, or `"prescribed"` (2.9) S.
     pub law: String,
+    /// β ≥ 0 (N·s/m), the damper of laws `"linear"` and `"lubricated"` (required there, refused for
+    /// `"prescribed"`).
     pub beta: Option<f64>,
+    /// p0 (N), the oil pressure of law `"lubricated"` (required there, refused otherwise): a number
+    /// ≥ 0 or an expression of t.
     pub p0: Option<FieldSpec>,
+    /// S (N), the prescribed normal stress of law `"prescribed"` (required there, refused
+    /// otherwise): a number or an expression of t.
     pub stress: Option<FieldSpec>,
 }
 
@@ -109,9 +133,14 @@ pub struct FoundationSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSection {
+    /// M ≥ 1: the number of elements (uniform, or graded by `grading`); either this or `nodes`.
     pub elements: Option<usize>,
+    /// q in [1, 10]: power-law grading x_i = L (i/M)^q, mirrored when refined towards x = L
+    /// (default 1: uniform).
     pub grading: Option<f64>,
+    /// The end a graded mesh refines towards (default `"end"`, the contact).
     pub graded_towards: Option<GradingEnd>,
+    /// Explicit nodes 0 = x_0 < … < x_M = L instead of `elements`.
     pub nodes: Option<Vec<f64>>,
 }
 
@@ -119,9 +148,15 @@ pub struct MeshSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TimeSection {
+    /// N ≥ 1: the number of steps (uniform, or graded by `grading`); either this or `times`.
     pub steps: Option<usize>,
+    /// q in [1, 10]: power-law graded times t_n = T (n/N)^q, small steps near t = 0 (default 1:
+    /// uniform).
     pub grading: Option<f64>,
+    /// Explicit times 0 = t_0 < … < t_N = T instead of `steps`.
     pub times: Option<Vec<f64>>,
+    /// The time treatment of the elastic term B ε(u) (docs/quasistatic.md, the fully discrete
+    /// scheme; default `"explicit"`, the paper's).
     #[serde(default)]
     pub scheme: TimeScheme,
 }
@@ -130,10 +165,14 @@ pub struct TimeSection {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSection {
+    /// Snapshot times, each a time of the grid: u, w (and v) at every node there (default: none).
     #[serde(default)]
     pub times: Vec<f64>,
+    /// Points of [0, L] whose displacement is recorded at every step (default: none).
     #[serde(default)]
     pub probes: Vec<f64>,
+    /// Also compute at each t_n the velocity the continuous problem assigns to u_n: one more solve
+    /// per step, second order for `"midpoint"` (default false).
     #[serde(default)]
     pub post_process_velocity: bool,
     /// `verify scene` also writes one `.vtu` (line cells over the interval mesh) per snapshot
@@ -146,8 +185,12 @@ pub struct OutputSection {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSection {
+    /// The relative tolerance of the semismooth Newton iteration for the end velocity, in [machine
+    /// ε, 1e-2) (default 8ε ≈ 1.8e-15).
     pub newton_relative_tolerance: Option<f64>,
+    /// The most Newton iterations per step, ≥ 1 (default 60).
     pub newton_max_iterations: Option<usize>,
+    /// Gauss points per element for loads that vary in x, 1 to 16 (default 4).
     pub load_quadrature_points: Option<usize>,
 }
 

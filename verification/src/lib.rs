@@ -23,6 +23,7 @@ pub mod plot;
 pub mod registry;
 pub mod robustness;
 pub mod rod;
+pub mod scene_keys;
 pub mod stats;
 pub mod suite;
 pub mod vtk;

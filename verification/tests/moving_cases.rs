@@ -1,6 +1,6 @@
 //! The moving-continuum cases: every `moving_*` file parses with its kind's format, explains
 //! its numbers, has the file name of its id; the quick tier holds the cheap ones and the 200 × 200
-//! map stays in the default tier; a typo is named; the quick cases pass.
+//! map and the long studies stay in the full tier; a typo is named; the quick cases pass.
 
 use std::path::PathBuf;
 
@@ -38,23 +38,28 @@ fn every_moving_case_parses_with_an_explanation() {
 }
 
 #[test]
-fn the_timing_map_and_the_element_onsets_are_default_tier_and_the_rest_is_quick() {
+fn the_long_moving_studies_are_full_tier_the_mid_ones_default_and_the_rest_quick() {
     for c in moving_cases() {
-        // the map (its timing), the finite-element onsets (14 s of eigenvalue bisections) and
-        // the plate pad's long time checks (20 s; its CI version is moving_plate_pad_quick)
-        let expected = if [
-            "moving_map",
-            "moving_flutter_elements",
-            "moving_flutter_patch",
-            "moving_plate_pad",
-        ]
-        .contains(&c.header.id.as_str())
-        {
-            Tier::Default
-        } else {
-            Tier::Quick
-        };
-        assert_eq!(c.header.tier, expected, "{}", c.header.id);
+        // full: the 200 × 200 map (its timing), the finite-element onsets (14 s of eigenvalue
+        // bisections) and the plate pad's long time checks (20 s); default: the 4–8 s studies
+        // (the thick string's references, the patch, the CI versions of the map and of the pad)
+        let id = c.header.id.as_str();
+        let expected =
+            if ["moving_map", "moving_flutter_elements", "moving_plate_pad"].contains(&id) {
+                Tier::Full
+            } else if [
+                "moving_flutter",
+                "moving_flutter_patch",
+                "moving_map_quick",
+                "moving_plate_pad_quick",
+            ]
+            .contains(&id)
+            {
+                Tier::Default
+            } else {
+                Tier::Quick
+            };
+        assert_eq!(c.header.tier, expected, "{id}");
     }
 }
 

@@ -20,8 +20,10 @@ use crate::model::dynamic::body::{stiffness_at_rest, ElasticBody, FreeDofs, Oper
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MassMatrix {
+    /// The consistent P1 mass matrix (the default).
     #[default]
     Consistent,
+    /// The row-sum lumped, diagonal mass matrix.
     Lumped,
 }
 

@@ -118,7 +118,9 @@ impl NormalTreatment {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum BarEnd {
+    /// The end x = 0.
     Left,
+    /// The end x = L.
     Right,
 }
 

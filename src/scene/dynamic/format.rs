@@ -16,22 +16,35 @@ use crate::scene::field_spec::FieldSpec;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicSceneFile {
+    /// `"dynamic"`: a hyperelastic body, a bar or a plane body, against a rigid foundation
+    /// (Barboteu–Danan–Sofonea (1.14)–(1.20), docs/dynamic.md).
     pub model: String,
+    /// A title for the reports and plots (default: none).
     #[serde(default)]
     pub title: String,
+    /// `[body]`: the shape, its mesh, the density and the mass matrix.
     pub body: BodySection,
+    /// `[material]`: the stored energy W of Π = ∂_F W(F) (1.14).
     pub material: DynamicMaterialSection,
+    /// `[time]`: the final time, the steps and the integrator.
     pub time: DynamicTimeSection,
+    /// `[initial]`: u0 and u1 of (1.20) (default: at rest, undeformed).
     #[serde(default)]
     pub initial: DynamicInitialSection,
+    /// `[body_force]`: the body force f0 of (1.15) (absent: none).
     pub body_force: Option<ValueSection>,
+    /// `[[dirichlet]]`: the parts of Γ1 (1.16), plane bodies only (a bar uses `body.supports`).
     #[serde(default)]
     pub dirichlet: Vec<DirichletSection>,
+    /// `[[traction]]`: the parts of Γ2 (1.17), each loaded by f2 = Πν, plane bodies only.
     #[serde(default)]
     pub traction: Vec<TractionSection>,
+    /// `[contact]`: the foundation, the normal treatment and the friction (absent: no contact).
     pub contact: Option<DynamicContactSection>,
+    /// `[output]`: the snapshot times.
     #[serde(default)]
     pub output: DynamicOutputSection,
+    /// `[solver]`: the Newton iteration of each step and the solver path.
     #[serde(default)]
     pub solver: DynamicSolverSection,
     /// The directory that a Gmsh `body.file` is relative to (the scene file's; not a key: set by
@@ -44,35 +57,58 @@ pub struct DynamicSceneFile {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySection {
+    /// `"bar"` (1D: `length`, `elements`, `area`, `supports`), `"rectangle"` (`origin`, `size`,
+    /// `divisions`, `diagonal`), `"disk"` (`center`, `radius`, `rings`) or `"annulus"` (`center`,
+    /// `inner`, `outer`, `radial`, `around`); keys of another shape are errors.
     pub shape: String,
+    /// ρ, the mass density of ρ ü − Div Π = f0 (1.15).
     pub density: f64,
+    /// The mass matrix (default `"consistent"`).
     #[serde(default)]
     pub mass: MassMatrix,
     // bar
+    /// Bar: the length L > 0 of the bar (0, L).
     pub length: Option<f64>,
+    /// Bar: the number of equal elements, ≥ 1.
     pub elements: Option<usize>,
+    /// Bar: the cross-section A > 0; energies and forces scale with it (default 1).
     pub area: Option<f64>,
+    /// Bar: the ends held at u = 0 (default: none).
     pub supports: Option<Vec<BarEnd>>,
     // rectangle
+    /// Rectangle: the lower-left corner [x, y] (default [0, 0]).
     #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub origin: Option<[f64; 2]>,
+    /// Rectangle: [width, height] > 0.
     #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub size: Option<[f64; 2]>,
+    /// Rectangle: [n_x, n_y] ≥ 1 squares, each cut into two triangles.
     #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub divisions: Option<[usize; 2]>,
+    /// Rectangle: which diagonal cuts each square (default `"up"`).
     pub diagonal: Option<Diagonal>,
     // disk, annulus
+    /// Disk and annulus: the centre [x, y].
     #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub center: Option<[f64; 2]>,
+    /// Disk: the radius > 0.
     pub radius: Option<f64>,
+    /// Disk: the rings of triangles from the centre to the rim, ≥ 1.
     pub rings: Option<usize>,
+    /// Annulus: the inner radius > 0.
     pub inner: Option<f64>,
+    /// Annulus: the outer radius > `inner`.
     pub outer: Option<f64>,
+    /// Annulus: the layers of cells between the radii, ≥ 1.
     pub radial: Option<usize>,
+    /// Annulus: the cells around, ≥ 3.
     pub around: Option<usize>,
-    // gmsh: the .msh file (relative to the scene file), x ↦ scale x + offset
+    /// Gmsh: the `.msh` file (format 4.1 ASCII or binary, or 2.2 ASCII), relative to the scene
+    /// file.
     pub file: Option<String>,
+    /// Gmsh: x ↦ scale x + offset on the file's coordinates, the scale (default 1).
     pub scale: Option<f64>,
+    /// Gmsh: x ↦ scale x + offset on the file's coordinates, the offset [x, y] (default [0, 0]).
     #[serde(default, deserialize_with = "crate::scene::fixed_array::exact_option")]
     pub offset: Option<[f64; 2]>,
 }
@@ -81,8 +117,12 @@ pub struct BodySection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicMaterialSection {
+    /// Plane body: `"linear"`, `"st_venant_kirchhoff"` or `"neo_hooke"` (plane strain); bar:
+    /// `"linear"` or `"st_venant_kirchhoff"` (docs/dynamic.md, Laws).
     pub law: String,
+    /// E > 0: Young's modulus.
     pub young: f64,
+    /// κ in (−1, 1/2): Poisson's ratio, plane bodies only (required there, refused for a bar).
     pub poisson: Option<f64>,
 }
 
@@ -90,8 +130,11 @@ pub struct DynamicMaterialSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicTimeSection {
+    /// T > 0: the end of the run.
     pub final_time: f64,
+    /// N ≥ 1 equal steps of [0, T].
     pub steps: usize,
+    /// The time integrator (docs/dynamic.md, Discretization).
     pub scheme: DynamicScheme,
 }
 
@@ -107,6 +150,7 @@ pub enum ValueSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ValueSection {
+    /// f0: one number or expression of x, t (bar) or two, [x, y], of x, y, t (plane body).
     pub value: ValueSpec,
 }
 
@@ -114,7 +158,11 @@ pub struct ValueSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicInitialSection {
+    /// u0 of (1.20): one value (bar) or two, [x, y] (plane body), numbers or expressions of x, y
+    /// (default 0).
     pub displacement: Option<ValueSpec>,
+    /// u1 = u̇(0) of (1.20): one value (bar) or two (plane body), numbers or expressions of x, y
+    /// (default 0).
     pub velocity: Option<ValueSpec>,
 }
 
@@ -122,20 +170,36 @@ pub struct DynamicInitialSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicContactSection {
+    /// The normal contact (docs/dynamic.md): `"penalty"` (r), `"energy_consistent"` =
+    /// `"hauret_le_tallec"` (r; HLT (3.68)), `"hauret_le_tallec_tilted"` (r; HLT (3.69)),
+    /// `"limited_penetration"` (r and `depth`; (1.8), (1.18)) or `"signorini"` (exact
+    /// non-penetration, no stiffness).
     pub treatment: String,
+    /// r > 0: the penalty or compliance stiffness p(u_ν) = r (u_ν)_+ (1.8); all treatments but
+    /// `"signorini"`.
     pub stiffness: Option<f64>,
+    /// g > 0: the thickness of the asperity layer of (1.18), `"limited_penetration"`; also the
+    /// default of `friction.depth`.
     pub depth: Option<f64>,
     // 2D
+    /// Plane body: the foundation is the half-plane {y ≤ level} (required).
     pub level: Option<f64>,
+    /// Plane body: the sides (rectangle) of the candidate contact boundary; either this or `where`
+    /// (default: all of the boundary).
     #[serde(default)]
     pub sides: Vec<RectangleSide>,
+    /// Plane body, instead of `sides`: an expression of x, y positive at the midpoints of the
+    /// candidate contact edges.
     #[serde(rename = "where")]
     pub where_: Option<String>,
     /// A boundary group of the body's Gmsh file (`shape = "gmsh"`).
     pub group: Option<String>,
     // bar
+    /// Bar: the end that meets the wall (required).
     pub end: Option<BarEnd>,
+    /// Bar: the wall position x (required).
     pub wall: Option<f64>,
+    /// `[contact.friction]`: Coulomb friction (1.19), plane bodies only (absent: frictionless).
     pub friction: Option<FrictionSection>,
 }
 
@@ -143,8 +207,12 @@ pub struct DynamicContactSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSection {
+    /// The coefficient μ(u_ν) of (1.13): `"constant"` μ0, `"growing"` (or `"mu1"`: 0 → μ0 over the
+    /// layer) or `"decreasing"` (or `"mu2"`: 2μ0 → μ0) (docs/dynamic.md).
     pub law: String,
+    /// μ0 ≥ 0: the coefficient at full penetration, μ0 = μ(g).
     pub mu0: f64,
+    /// g > 0 of (1.13), laws `"growing"` and `"decreasing"` (default: `contact.depth`).
     pub depth: Option<f64>,
 }
 
@@ -152,6 +220,7 @@ pub struct FrictionSection {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicOutputSection {
+    /// Snapshot times in [0, T]: the displacement at the step nearest each (default: none).
     #[serde(default)]
     pub times: Vec<f64>,
     /// `verify scene` also writes one `.vtu` per snapshot and a `.pvd` collection (ParaView):
@@ -164,8 +233,12 @@ pub struct DynamicOutputSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicSolverSection {
+    /// The relative tolerance of Newton on ‖R‖_∞, in (0, 1) (default 1e-12).
     pub tolerance: Option<f64>,
+    /// The most Newton iterations per step (default 60).
     pub max_iterations: Option<usize>,
+    /// `"auto"` (a linear body takes the linear path) or `"full"` (the full Newton path always, for
+    /// comparisons) (default `"auto"`).
     pub path: Option<String>,
 }
 

@@ -12,11 +12,18 @@ use crate::solve::quadratic_eigen::{solve_quadratic_eigen, QuadraticEigenParams}
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ParticleSection {
+    /// m > 0: the particle's mass (docs/moving_continua.md §4.2.3).
     pub mass: f64,
+    /// c > 0: the radial spring, relaxed at radius r0.
     pub stiffness: f64,
+    /// N ≥ 0: the force pressing the particle on the disc.
     pub normal_force: f64,
+    /// μ ≥ 0: the Coulomb coefficient between particle and disc.
     pub friction_coefficient: f64,
+    /// r0 > 0: the radius at which the spring is relaxed.
     pub radius: f64,
+    /// Ω, finite and non-zero: the disc's angular speed (the linearization needs sliding, Ω r0 ≠
+    /// 0).
     pub angular_speed: f64,
 }
 
@@ -24,12 +31,18 @@ pub struct ParticleSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DiscSceneFile {
+    /// `"disc_particle"`: the particle on a rotating disc, Hetzler (2009) §4.2.3, m Δr̈ + (μ N/(Ω
+    /// r0)) Δṙ + c Δr = 0 (docs/moving_continua.md).
     pub model: String,
+    /// A title for the reports and plots (default: none).
     #[serde(default)]
     pub title: String,
+    /// `[particle]`: the particle, its spring, the contact and the disc's speed.
     pub particle: ParticleSection,
+    /// `[stability]`: the verdict tolerances and the run options (default: all defaults).
     #[serde(default)]
     pub stability: StabilitySection,
+    /// `[[sweep]]`: eigenvalue loci along one parameter, any number (default: none).
     #[serde(default)]
     pub sweep: Vec<AxisSection>,
 }

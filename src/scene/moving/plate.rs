@@ -24,26 +24,29 @@ use crate::solve::quadratic_eigen::EigenKernel;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlateSection {
-    /// a (0: the full disc clamped at its centre).
+    /// a in [0, 0.999 b): the clamped inner radius (0: the full disc clamped at its centre,
+    /// w = w_r = 0) (docs/moving_continua.md §4.1).
     pub inner_radius: f64,
-    /// b.
+    /// b > 0: the outer radius.
     pub outer_radius: f64,
-    /// D.
+    /// D > 0: the bending stiffness of the Kirchhoff plate.
     pub bending_stiffness: f64,
-    /// ρh.
+    /// ρh > 0: the mass per unit area.
     pub mass_per_area: f64,
-    /// ν.
+    /// ν in (−1, 0.5]: Poisson's ratio.
     pub poisson: f64,
-    /// h (the pad friction's moment arm h/2).
+    /// h > 0: the thickness, the pad friction's moment arm h/2.
     pub thickness: f64,
-    /// `free` | `clamped` | `simply_supported`.
+    /// The outer edge r = b: `"free"`, `"clamped"` or `"simply_supported"` (default `"free"`).
     #[serde(default = "free")]
     pub outer_edge: String,
+    /// Add the geometric stiffness of the spinning disc's in-plane stress (default false, off in
+    /// the paper).
     #[serde(default)]
     pub membrane_stiffening: bool,
-    /// Ω.
+    /// Ω, finite: the angular speed of the plate.
     pub angular_speed: f64,
-    /// α (mass-proportional).
+    /// α ≥ 0: mass-proportional damping (default 0).
     #[serde(default)]
     pub damping: f64,
 }
@@ -56,14 +59,14 @@ fn free() -> String {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PadSection {
-    /// r_p in (a, b].
+    /// r_p in (a, b]: the radius at which the pad touches the plate.
     pub radius: f64,
-    /// φ_p.
+    /// φ_p, finite: the pad's angle (default 0).
     #[serde(default)]
     pub angle: f64,
-    /// k_p.
+    /// k_p ≥ 0: the pad's normal spring.
     pub stiffness: f64,
-    /// μ.
+    /// μ ≥ 0: the Coulomb coefficient between pad and plate (default 0).
     #[serde(default)]
     pub friction: f64,
 }
@@ -72,11 +75,12 @@ pub struct PadSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlateDiscretizationSection {
-    /// N: harmonics 0 … N (2N + 1 angular functions).
+    /// N in 0 … 64: harmonics 1, cos nφ, sin nφ for n = 1 … N (2N + 1 angular functions).
     pub harmonics: usize,
-    /// Radial Hermite elements.
+    /// The number of radial Hermite elements on [a, b].
     pub elements: usize,
-    /// Radial modes kept per angular function (absent: the full radial basis).
+    /// The lowest radial modes kept per angular function, 1 to the radial functions (absent:
+    /// the full radial basis).
     pub radial_modes: Option<usize>,
 }
 
@@ -84,16 +88,27 @@ pub struct PlateDiscretizationSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RotatingPlateSceneFile {
+    /// `"rotating_plate"`: the rotating annular Kirchhoff plate with an optional friction pad,
+    /// Hetzler (2009) §4.1 (docs/moving_continua.md).
     pub model: String,
+    /// A title for the reports and plots (default: none).
     #[serde(default)]
     pub title: String,
+    /// `[plate]`: the plate, its outer edge, speed and damping.
     pub plate: PlateSection,
+    /// `[pad]`: a stationary pad on the upper surface, a normal spring with Coulomb friction
+    /// (absent: no pad).
     pub pad: Option<PadSection>,
+    /// `[discretization]`: Fourier harmonics × radial Hermite elements; at most `MAX_COORDINATES`
+    /// coordinates.
     pub discretization: PlateDiscretizationSection,
+    /// `[stability]`: the verdict tolerances and the run options (default: all defaults).
     #[serde(default)]
     pub stability: StabilitySection,
+    /// `[[sweep]]`: eigenvalue loci along one parameter, any number (default: none).
     #[serde(default)]
     pub sweep: Vec<AxisSection>,
+    /// `[map]`: verdicts on a grid of two parameters (absent: none).
     pub map: Option<MapSection>,
 }
 

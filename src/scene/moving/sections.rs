@@ -13,14 +13,22 @@ use crate::solve::quadratic_eigen::EigenKernel;
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StabilitySection {
+    /// τ_rel: the verdicts' round-off tolerance relative to the spectral scale max |λ| (default
+    /// 1e-7).
     pub relative_tolerance: Option<f64>,
+    /// τ_abs: the tolerance's floor when the spectral scale is tiny (default 1e-12).
     pub absolute_tolerance: Option<f64>,
     /// Verdicts from the resolved eigenvalues only (default true; `model::moving::resolution`).
     pub resolved_only: Option<bool>,
+    /// Worker threads of sweeps and maps, 0 to 1024 (default 0: all cores; results do not depend on
+    /// it).
     #[serde(default)]
     pub threads: usize,
+    /// Also compute and write the eigenvectors at the analysed point (default false; string and
+    /// plate).
     #[serde(default)]
     pub eigenvectors: bool,
+    /// The eigensolver of the `[map]` points (default `"small_dense"`; string and plate).
     pub map_kernel: Option<EigenKernel>,
 }
 
@@ -28,10 +36,19 @@ pub struct StabilitySection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AxisSection {
+    /// The parameter varied: string `speed`, `damping`, `oscillator_stiffness`, `oscillator_mass`,
+    /// `position`, `penalty_stiffness`, `friction`, `control_parameter`; disc `angular_speed`,
+    /// `normal_force`, `friction_coefficient`, `radius`; plate `angular_speed`, `damping`,
+    /// `pad_stiffness`, `friction` (the last two need a `[pad]`).
     pub parameter: String,
+    /// The first value, finite.
     pub from: f64,
+    /// The last value, finite and other than `from`.
     pub to: f64,
+    /// The number of values from `from` to `to`, 2 to 100000.
     pub points: usize,
+    /// `"linear"` (equal spacing) or `"log"` (geometric spacing; `from`, `to` > 0) (default
+    /// `"linear"`).
     #[serde(default = "linear")]
     pub scale: String,
 }
@@ -44,7 +61,9 @@ fn linear() -> String {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MapSection {
+    /// The horizontal axis: `parameter`, `from`, `to`, `points`, `scale` as for `[[sweep]]`.
     pub x: AxisSection,
+    /// The vertical axis, a parameter other than `x`'s.
     pub y: AxisSection,
 }
 

@@ -26,7 +26,10 @@ use crate::solve::quadratic_eigen::{EigenKernel, QuadraticEigenParams};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StringSection {
+    /// v̄: the transport speed over the wave speed (79)–(82), finite (1: the undamped string
+    /// diverges) (docs/moving_continua.md §4.2.1).
     pub speed: f64,
+    /// ᾱ ≥ 0: mass-proportional (air-drag) damping of the weak form (83) (default 0).
     #[serde(default)]
     pub damping: f64,
 }
@@ -35,13 +38,24 @@ pub struct StringSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OscillatorSection {
+    /// c̄ > 0: the oscillator spring (83).
     pub stiffness: f64,
+    /// m̄ > 0: the oscillator mass (83).
     pub mass: f64,
+    /// ā in (0, 1): the bushing position between the guides at 0 and 1.
     pub position: f64,
+    /// `"ideal"` (the bushing follows the string, y_c = w(ā)) or `"penalty"` (a massless bushing
+    /// y_c on a spring k̄_p, (87)–(91)) (default `"ideal"`).
     #[serde(default = "ideal")]
     pub contact: String,
+    /// k̄_p > 0: the contact spring of `contact = "penalty"` (required there, refused for
+    /// `"ideal"`).
     pub penalty_stiffness: Option<f64>,
+    /// μ h̄ ≥ 0: friction coefficient times thickness of the thick string (99) (absent, with no
+    /// `control_parameter`: 0, the thin string).
     pub friction: Option<f64>,
+    /// Instead of `friction`: p = μ h̄ c̄ (ideal contact, (103)) or μ h̄ k̄_p (penalty,
+    /// (105)–(108)).
     pub control_parameter: Option<f64>,
     /// ε: the width of the contact patch (0: point contact, the paper's).
     #[serde(default)]
@@ -56,9 +70,14 @@ fn ideal() -> String {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DiscretizationSection {
+    /// The Ritz basis (84): `"sine"` (`modes`), `"p1"` or `"hermite"` finite elements (`elements`);
+    /// at most 400 string coordinates.
     pub basis: String,
+    /// N ≥ 1 sine functions, basis `"sine"` only.
     pub modes: Option<usize>,
+    /// The number of finite elements, bases `"p1"` and `"hermite"` only.
     pub elements: Option<usize>,
+    /// How the massless penalty bushing is eliminated (90)–(91) (default `"series_springs"`).
     #[serde(default)]
     pub condensation: PenaltyCondensation,
 }
@@ -67,16 +86,25 @@ pub struct DiscretizationSection {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MovingStringSceneFile {
+    /// `"moving_string"`: the axially moving string with an oscillator in a bushing, Hetzler (2009)
+    /// §4.2.1–4.2.2 (docs/moving_continua.md).
     pub model: String,
+    /// A title for the reports and plots (default: none).
     #[serde(default)]
     pub title: String,
+    /// `[string]`: the string's speed and damping.
     pub string: StringSection,
+    /// `[oscillator]`: the oscillator in the bushing and its contact (absent: the bare string).
     pub oscillator: Option<OscillatorSection>,
+    /// `[discretization]`: the Ritz basis of the string.
     pub discretization: DiscretizationSection,
+    /// `[stability]`: the verdict tolerances and the run options (default: all defaults).
     #[serde(default)]
     pub stability: StabilitySection,
+    /// `[[sweep]]`: eigenvalue loci along one parameter, any number (default: none).
     #[serde(default)]
     pub sweep: Vec<AxisSection>,
+    /// `[map]`: verdicts on a grid of two parameters (absent: none).
     pub map: Option<MapSection>,
 }
 

@@ -12,6 +12,7 @@
 //!   also ParaView files)
 //! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
 //! - `verify readme [--check]`   the README's numbers, generated from reports/
+//! - `verify scene-keys [--check]`   docs/scenes.md, generated from the scene types' doc comments
 //! - `verify benches`   criterion's measurements against `benches/budgets.toml` (after `cargo bench`)
 //! - `verify --quick --out DIR --check reports`   run, then fail when a deterministic number
 //!   differs from the committed report of the same case (CI)
@@ -100,6 +101,12 @@ enum Command {
     /// Regenerate the README's numbers (its `<!-- generated: … -->` blocks) from reports/;
     /// with --check, exit 1 when they differ instead.
     Readme {
+        #[arg(long)]
+        check: bool,
+    },
+    /// Write docs/scenes.md, the reference of every scene key, from the scene types' fields and
+    /// doc comments in src/; with --check, exit 1 when it differs instead.
+    SceneKeys {
         #[arg(long)]
         check: bool,
     },
@@ -275,6 +282,9 @@ fn main() -> ExitCode {
                     ExitCode::from(2)
                 }
             };
+        }
+        Some(Command::SceneKeys { check }) => {
+            return contactlab_verify::scene_keys::run_command(&repository_root(), *check);
         }
         Some(Command::Readme { check }) => {
             let root = repository_root();
