@@ -101,7 +101,8 @@ pub struct PlaneSceneFile {
     /// A title for the reports and plots (default: none).
     #[serde(default)]
     pub title: String,
-    /// `[geometry]`: the body, a rectangle of n_x × n_y squares each cut into two P1 triangles.
+    /// `[geometry]`: the body, a rectangle of n_x × n_y squares each cut into two P1 triangles, or
+    /// a Gmsh mesh (`shape = "gmsh"`).
     pub geometry: GeometrySection,
     /// `[time]`: the time grid of [0, T] and the scheme.
     pub time: PlaneTimeSection,
