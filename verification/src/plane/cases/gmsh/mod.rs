@@ -35,7 +35,7 @@ use crate::core::format::{invalid, positive, CaseError};
 use crate::core::report::case_report::CaseReport;
 use crate::plane::errors::PLANE_ERRORS;
 use crate::plane::study::{Discretization, ExactSpec};
-use crate::plot::TriangleMeshPlot;
+use crate::plot::{TriangleField, TriangleMeshPlot};
 
 use files::{read_mesh, repository_root};
 
@@ -178,14 +178,32 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
                 .collect::<Vec<_>>()
                 .join(", ")
         );
-        plots.push(
-            TriangleMeshPlot::new(
-                format!("{file} ({counts})"),
-                g.mesh.nodes().to_vec(),
-                g.mesh.triangles().to_vec(),
-            )
-            .wireframe(true),
-        );
+        let mut plot = TriangleMeshPlot::new(
+            format!("{file} ({counts})"),
+            g.mesh.nodes().to_vec(),
+            g.mesh.triangles().to_vec(),
+        )
+        .wireframe(true);
+        if g.regions.len() > 1 {
+            // each triangle coloured by the index of its 2D group (alphabetical)
+            let mut region = vec![f64::NAN; g.mesh.triangles().len()];
+            for (i, triangles) in g.regions.values().enumerate() {
+                for &t in triangles {
+                    region[t] = i as f64;
+                }
+            }
+            let names: Vec<String> = g
+                .regions
+                .keys()
+                .enumerate()
+                .map(|(i, k)| format!("{k} = {i}"))
+                .collect();
+            plot = plot.field(TriangleField::per_triangle(
+                format!("region: {}", names.join(", ")),
+                region,
+            ));
+        }
+        plots.push(plot);
     }
     if !plots.is_empty() {
         ctx.triangle_panels(report, "meshes", "The Gmsh meshes", &plots, 1)?;
