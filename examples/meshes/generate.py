@@ -31,7 +31,7 @@ def write(geo, out, version=4.1, binary=False, numbers=None):
         os.remove(path)
 
 
-for n in (4, 8, 16):
+for n in (4, 8, 16, 32, 64):
     write("unit_square.geo", os.path.join(HERE, f"unit_square_{n}.msh"), numbers={"n": n})
 write("unit_square.geo", os.path.join(HERE, "unit_square_8_binary.msh"), binary=True, numbers={"n": 8})
 write("unit_square.geo", os.path.join(HERE, "unit_square_8_v22.msh"), version=2.2, numbers={"n": 8})

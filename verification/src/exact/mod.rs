@@ -1,5 +1,7 @@
 //! Closed-form solutions, each citing its source and equation.
 //!
+//! - `bimaterial_strip`: a strip of two Kelvin–Voigt materials in series under an end traction,
+//!   static and after n implicit steps (derived there; docs/quasistatic.md).
 //! - `rod_constant_data`: the family of exact solutions of problem T1D with constant data
 //!   (derived here; the paper's two, (4.6) and (4.7), are members).
 //! - `rod_paper`: the paper's (4.6) and (4.7) written out literally, to check the family against.
@@ -18,6 +20,7 @@
 //!   the Bessel-function characteristic determinants, derived there.
 
 pub mod bessel;
+pub mod bimaterial_strip;
 pub mod coulomb_friction;
 pub mod loaded_block;
 pub mod moving_string;

@@ -123,6 +123,27 @@ thread_local! {
 /// Distinguishes solutions in the per-thread evaluation cache.
 static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
+/// The four sides of the unit square as boundary parts of a mesh.
+#[derive(Debug)]
+pub struct SquareSides {
+    pub left: BoundarySelector,
+    pub top: BoundarySelector,
+    pub right: BoundarySelector,
+    pub bottom: BoundarySelector,
+}
+
+impl SquareSides {
+    /// The sides of a generated rectangle mesh (its side tags).
+    pub fn rectangle() -> Self {
+        Self {
+            left: BoundarySelector::side(RectangleSide::Left),
+            top: BoundarySelector::side(RectangleSide::Top),
+            right: BoundarySelector::side(RectangleSide::Right),
+            bottom: BoundarySelector::side(RectangleSide::Bottom),
+        }
+    }
+}
+
 /// A manufactured plane solution: its field, its materials and its foundation (the laws of this
 /// crate).
 #[derive(Debug, Clone)]
@@ -290,6 +311,19 @@ impl PlaneManufactured {
         let mesh =
             TriangleMesh::rectangle([0.0, 0.0], [1.0, 1.0], [divisions, divisions], Diagonal::Up)
                 .map_err(|e| format!("{divisions} × {divisions} squares: {e}"))?;
+        Ok(self.problem_on(mesh, SquareSides::rectangle(), integration))
+    }
+
+    /// The problem on any triangulation `mesh` of the unit square whose exact solution is u, with
+    /// its four sides selected by `sides` (Γ1 = left, Γ2 = top and right, Γ3 = bottom). The data
+    /// are evaluated where the mesh puts its nodes and quadrature points, so a side selected
+    /// wrongly, or a mesh that is not the unit square, shows as an error that does not converge.
+    pub fn problem_on(
+        &self,
+        mesh: TriangleMesh,
+        sides: SquareSides,
+        integration: ContactIntegration,
+    ) -> PlaneProblem {
         let xyt = Dependence {
             x: true,
             y: true,
@@ -323,7 +357,7 @@ impl PlaneManufactured {
                 move |x, y, _| m.jet(x, y, 0.0).u[c],
             )
         });
-        Ok(PlaneProblem {
+        PlaneProblem {
             mesh,
             final_time: self.final_time,
             viscosity: self.viscosity.solver_law(),
@@ -331,27 +365,27 @@ impl PlaneManufactured {
             regions: Vec::new(),
             body_force: body,
             dirichlet: vec![DirichletPart {
-                boundary: BoundarySelector::side(RectangleSide::Left),
+                boundary: sides.left,
                 support: Support::Clamped,
             }],
             traction: vec![
                 TractionPart {
-                    boundary: BoundarySelector::side(RectangleSide::Top),
+                    boundary: sides.top,
                     traction: top,
                 },
                 TractionPart {
-                    boundary: BoundarySelector::side(RectangleSide::Right),
+                    boundary: sides.right,
                     traction: right,
                 },
             ],
             contact: Some(ContactPart {
-                boundary: BoundarySelector::side(RectangleSide::Bottom),
+                boundary: sides.bottom,
                 law: Arc::new(self.foundation.solver_law()),
                 integration,
                 source: Some(source),
             }),
             initial_displacement: u0,
-        })
+        }
     }
 }
 

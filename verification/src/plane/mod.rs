@@ -9,6 +9,7 @@
 //! | `plane_stability` | [`cases::stability`] | the explicit bound k λ_max(A⁻¹B) < 2 |
 //! | `plane_paths` | [`cases::paths`] | the condensed and Newton paths agree; error against cost of both |
 //! | `plane_performance` | [`cases::performance`] | the Test 2D time loop and its cost against the sparse solve |
+//! | `plane_gmsh` | [`cases::gmsh`] | Gmsh meshes: the three formats against our own rectangle, rates on the files' meshes, the two-material strip's closed form, every mesh check on crafted files |
 
 pub mod cases;
 pub mod errors;
@@ -41,6 +42,7 @@ impl Family for Plane {
             "plane_stability",
             "plane_paths",
             "plane_performance",
+            "plane_gmsh",
         ]
     }
 
@@ -51,6 +53,7 @@ impl Family for Plane {
             "plane_stability" => cases::stability::StabilityCase::parse(case).map(|_| ()),
             "plane_paths" => cases::paths::PathsCase::parse(case).map(|_| ()),
             "plane_performance" => cases::performance::PerformanceCase::parse(case).map(|_| ()),
+            "plane_gmsh" => cases::gmsh::parse(case).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -62,6 +65,7 @@ impl Family for Plane {
             "plane_stability" => cases::stability::run(case, ctx, report),
             "plane_paths" => cases::paths::run(case, ctx, report),
             "plane_performance" => cases::performance::run(case, ctx, report),
+            "plane_gmsh" => cases::gmsh::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }
