@@ -32,6 +32,7 @@ fn ring(law: Arc<dyn Hyperelastic2d>) -> Arc<PlaneBody> {
             traction: vec![],
             body_force: [Field::Constant(0.0), Field::Constant(0.0)],
             mass: MassMatrix::Consistent,
+            regions: Vec::new(),
         })
         .expect("body"),
     )
@@ -47,6 +48,7 @@ fn ball() -> Arc<PlaneBody> {
             traction: vec![],
             body_force: [Field::Constant(0.0), Field::Constant(0.0)],
             mass: MassMatrix::Consistent,
+            regions: Vec::new(),
         })
         .expect("body"),
     )

@@ -10,7 +10,8 @@ the `solution.json` the same run wrote:
   element of an interval mesh);
 - the expected arrays with their shapes: point data displacement and velocity (n, 3) (velocity
   absent exactly where the JSON snapshot has no `w`: t_0 of the quasistatic models), the contact
-  arrays (n,), cell data strain and stress (c, 9) symmetric, von_mises (c,), body_id (c,) = 0;
+  arrays (n,), cell data strain and stress (c, 9) symmetric, von_mises (c,), body_id (c,) = 0,
+  region (c,) integers ≥ 0;
 - every value finite;
 - values against the JSON: displacement and velocity at every node (dynamic: the velocity at
   the final time, the only one its JSON holds); for the quasistatic plane the
@@ -20,7 +21,12 @@ the `solution.json` the same run wrote:
   lengths of the adjacent contact edges) against the JSON's contact force at that time; for the
   rod the contact pressure at x = L against −σ(L, t_n); for a dynamic plane body the strain and
   stress tensors (σ_33 included) against the law (linear, St Venant–Kirchhoff, neo-Hooke with
-  the λ, μ of the JSON's description) written here from F = I + ∇u.
+  the λ, μ of the JSON's description: the body's, then each region's) of each cell's `region`,
+  written here from F = I + ∇u;
+- the `region` map against the Gmsh file itself, when the JSON names its scene (`source`, a
+  dynamic scene) and the scene has `[[region]]`: the scene's .msh read with meshio, each
+  region's triangles (its physical group, placed by x ↦ scale x + offset) found among the cells
+  by their centroids must carry the region's index + 1, every other cell 0.
 
 Usage: check_vtk.py DIR [DIR ...]; exits 1 on the first failed directory's list of problems.
 """
@@ -37,7 +43,8 @@ import numpy as np
 CONTACT_QUASISTATIC = ["contact_pressure", "contact_normal_velocity", "contact_active", "contact_node"]
 CONTACT_DYNAMIC = ["contact_pressure", "contact_gap", "contact_active", "contact_node"]
 FRICTION = ["friction_traction", "slip_velocity"]
-CELL = ["strain", "stress", "von_mises", "body_id"]
+CELL = ["strain", "stress", "von_mises", "body_id", "region"]
+LAW = r"(linear elastic|St Venant-Kirchhoff|neo-Hooke), plane strain \(λ = ([^,]+), μ = ([^)]+)\)"
 
 
 class Problems(list):
@@ -72,16 +79,18 @@ def p1_strain(nodes, triangles, u):
     return out
 
 
-def law_stress(body, F):
+def law_stress(body, F, material=0):
     """The stress and strain (c, 9) of a plane-strain hyperelastic law written here from its
     definition, for deformation gradients F (c, 2, 2) (F_33 = 1), or None when `body` (the JSON's
-    description) names no law known here. Small strain: ε = sym(F − I), σ = λ tr ε I + 2μ ε,
+    description) names no law known here; `material` 0 is the body's law, r + 1 region r's (the
+    laws in the order the description lists them). Small strain: ε = sym(F − I), σ = λ tr ε I + 2μ ε,
     σ_33 = λ tr ε; St Venant–Kirchhoff: E = ½(FᵀF − I), S = λ tr E I + 2μ E, σ = F S Fᵀ / J,
     σ_33 = λ tr E / J; neo-Hooke: σ = (μ (F Fᵀ − I) + λ ln J I) / J, σ_33 = λ ln J / J."""
     import re
-    m = re.search(r"(linear elastic|St Venant-Kirchhoff|neo-Hooke), plane strain \(λ = ([^,]+), μ = ([^)]+)\)", body)
-    if not m:
+    laws = list(re.finditer(LAW, body))
+    if material >= len(laws):
         return None
+    m = laws[material]
     law, lam, mu = m.group(1), float(m.group(2)), float(m.group(3))
     eye = np.eye(2)
     J = np.linalg.det(F)
@@ -138,6 +147,32 @@ def contact_masses(nodes, triangles, on_contact):
             m[a] += 0.5 * length
             m[b] += 0.5 * length
     return m
+
+
+def expected_regions(sol, triangles_xy):
+    """The region of each cell (index + 1, 0 for the body's material) from the scene's Gmsh file
+    read with meshio, or None when the JSON names no scene with [[region]]. `triangles_xy` (c, 3, 2)
+    are the cells' vertices."""
+    import tomllib
+    source = Path(sol.get("source", ""))
+    if not source.is_file():
+        return None
+    scene = tomllib.loads(source.read_text())
+    regions = scene.get("region", [])
+    body = scene.get("body") or scene.get("geometry") or {}
+    if not regions or body.get("shape") != "gmsh":
+        return None
+    msh = meshio.read(source.parent / body["file"])
+    scale, offset = body.get("scale", 1.0), np.array(body.get("offset", [0.0, 0.0]))
+    tri = msh.cells_dict["triangle"]
+    pts = msh.points[:, :2] * scale + offset
+    key = lambda c: tuple(np.round(c / (scale * 1e-9)).astype(np.int64))
+    cell_of = {key(c): e for e, c in enumerate(triangles_xy.mean(axis=1))}
+    out = np.zeros(len(triangles_xy), int)
+    for r, region in enumerate(regions):
+        for t in msh.cell_sets_dict[region["group"]]["triangle"]:
+            out[cell_of[key(pts[tri[t]].mean(axis=0))]] = r + 1
+    return out
 
 
 def family(sol):
@@ -250,6 +285,14 @@ def check_dir(d: Path):
                 p.check(close(a[:, 1], a[:, 3], 0) and not np.any(a[:, [2, 5, 6, 7]]), f"{where}: `{name}` is not a plane symmetric tensor")
         vm = cd["von_mises"].reshape(-1)
         bid = cd["body_id"].reshape(-1)
+        region = cd["region"].reshape(-1)
+        p.check(region.shape == (cells_expected,) and np.issubdtype(region.dtype, np.integer) and not np.any(region < 0),
+                f"{where}: region is not a non-negative integer per cell")
+        if region.shape == (cells_expected,) and triangles is not None and fam == "dynamic_plane":
+            want = expected_regions(sol, nodes[triangles])
+            if want is None:
+                want = np.zeros(cells_expected, int)
+            p.check(np.array_equal(region, want), f"{where}: region differs from the Gmsh file's groups ({int(np.sum(region != want))} cells)")
         p.check(vm.shape == (cells_expected,), f"{where}: von_mises shape {cd['von_mises'].shape}")
         p.check(bid.shape == (cells_expected,) and not np.any(bid), f"{where}: body_id is not 0 on every cell")
         if cd["stress"].shape == (cells_expected, 9) and vm.shape == (cells_expected,):
@@ -272,9 +315,16 @@ def check_dir(d: Path):
                             f"{where}: Σ m_i p_i = {resultant!r}, JSON contact force {f!r}")
         if fam == "dynamic_plane":
             F = deformation_gradients(nodes, triangles, u_json)
-            law = law_stress(sol["body"], F)
-            if p.check(law is not None, f"{where}: no law known here in {sol['body']!r}"):
-                stress, strain = law
+            stress, strain = np.zeros((cells_expected, 9)), np.zeros((cells_expected, 9))
+            known = True
+            for mat in np.unique(region):
+                law = law_stress(sol["body"], F, int(mat))
+                if not p.check(law is not None, f"{where}: no law {mat} known here in {sol['body']!r}"):
+                    known = False
+                    continue
+                on = region == mat
+                stress[on], strain[on] = law[0][on], law[1][on]
+            if known:
                 scale = max(1.0, float(np.max(np.abs(stress))))
                 p.check(bool(np.all(np.abs(cd["stress"] - stress) <= 1e-9 * scale)),
                         f"{where}: stress differs from the law's written here (max {np.max(np.abs(cd['stress'] - stress))!r})")

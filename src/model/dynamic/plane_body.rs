@@ -4,13 +4,16 @@
 //! On a triangle with shape gradients ∇φ_a the deformation gradient is constant,
 //! F = I + Σ_a u_a ⊗ ∇φ_a; the internal force of node a is |e| Π(F) ∇φ_a and the tangent
 //! stiffness |e| ∇φ_a · (∂Π/∂F) ∇φ_b. Consistent mass (ρ|e|/12)(1 + δ_ab) per component, or
-//! lumped ρ|e|/3.
+//! lumped ρ|e|/3. Regions of the mesh may carry their own ρ and law ([`plane_material`]): each
+//! element's terms use its own.
+//!
+//! [`plane_material`]: crate::model::dynamic::plane_material
 
 use std::sync::Arc;
 
 use nalgebra::{Matrix2, SMatrix};
 
-use crate::error::{require_positive, InputError};
+use crate::error::InputError;
 use crate::fem::sparse::SymmetricPattern;
 use crate::fem::triangle_p1::P1Triangle;
 use crate::field::Field;
@@ -18,6 +21,8 @@ use crate::material::hyperelastic::Hyperelastic2d;
 use crate::mesh::triangle::TriangleMesh;
 use crate::model::dynamic::bar::MassMatrix;
 use crate::model::dynamic::body::{stiffness_at_rest, ElasticBody, FreeDofs, Operators};
+pub use crate::model::dynamic::plane_material::BodyRegion;
+use crate::model::dynamic::plane_material::ElementMaterials;
 use crate::model::quasistatic::plane::{DirichletPart, TractionPart};
 
 /// The data of a plane-strain body.
@@ -31,6 +36,9 @@ pub struct PlaneBodyData {
     /// f0(x, y, t).
     pub body_force: [Field; 2],
     pub mass: MassMatrix,
+    /// Regions with their own density and law (disjoint); the triangles of no region take
+    /// `density` and `law`. Empty for a one-material body.
+    pub regions: Vec<BodyRegion>,
 }
 
 /// The space-discretized plane body.
@@ -38,6 +46,8 @@ pub struct PlaneBodyData {
 pub struct PlaneBody {
     data: PlaneBodyData,
     elements: Vec<P1Triangle>,
+    /// The density and law of each element (built once).
+    materials: ElementMaterials,
     element_dofs: Vec<[Option<usize>; 6]>,
     /// The free dofs (global dof 2 i + c of node i, component c) and the operators.
     ops: Operators,
@@ -50,8 +60,6 @@ impl PlaneBody {
     /// Validates the data, numbers the free dofs and assembles the mass (and, for a small-strain
     /// law, the stiffness).
     pub fn new(data: PlaneBodyData) -> Result<Self, InputError> {
-        require_positive("body.density", data.density)?;
-        data.law.validate("body.material")?;
         for (c, f) in data.body_force.iter().enumerate() {
             f.validate(&format!("body.body_force[{c}]"))?;
         }
@@ -96,6 +104,12 @@ impl PlaneBody {
                 "counter-clockwise triangles of positive area",
             ));
         }
+        let materials = ElementMaterials::new(
+            data.density,
+            &data.law,
+            &data.regions,
+            mesh.triangles().len(),
+        )?;
         let element_dofs: Vec<[Option<usize>; 6]> = mesh
             .triangles()
             .iter()
@@ -104,7 +118,7 @@ impl PlaneBody {
         let pattern = SymmetricPattern::new(n, &element_dofs);
         let mut mass = vec![0.0; pattern.nnz()];
         for (e, el) in elements.iter().enumerate() {
-            let m = data.density * el.area;
+            let m = materials.density(e) * el.area;
             let mut local = [0.0; 36];
             for a in 0..3 {
                 for b in 0..3 {
@@ -138,6 +152,7 @@ impl PlaneBody {
         let mut body = Self {
             data,
             elements,
+            materials,
             element_dofs,
             ops: Operators {
                 dofs,
@@ -148,7 +163,7 @@ impl PlaneBody {
             traction_edges,
             h_min,
         };
-        if body.data.law.is_small_strain() {
+        if body.materials.all_small_strain() {
             body.ops.stiffness = Some(stiffness_at_rest(&body));
         }
         Ok(body)
@@ -172,6 +187,25 @@ impl PlaneBody {
     /// A free-dof vector from interleaved nodal values.
     pub fn from_nodal(&self, values: &[f64]) -> Vec<f64> {
         self.ops.dofs.from_nodal(values)
+    }
+
+    /// W_e, the law of element `e` (the body's or its region's).
+    #[inline]
+    pub fn law_of(&self, e: usize) -> &dyn Hyperelastic2d {
+        self.materials.law(e)
+    }
+
+    /// ρ_e, the density of element `e`.
+    #[inline]
+    pub fn density_of(&self, e: usize) -> f64 {
+        self.materials.density(e)
+    }
+
+    /// The region of element `e` (an index into `data().regions`), `None` where the body's own
+    /// material applies.
+    #[inline]
+    pub fn region_of(&self, e: usize) -> Option<usize> {
+        self.materials.index(e).checked_sub(1)
     }
 
     /// The element geometries.
@@ -265,10 +299,11 @@ impl ElasticBody for PlaneBody {
         let mut w = 0.0;
         for (e, el) in self.elements.iter().enumerate() {
             let f = self.deformation_gradient(u, e);
-            if !self.data.law.admissible(&f) {
+            let law = self.materials.law(e);
+            if !law.admissible(&f) {
                 return f64::INFINITY;
             }
-            w += el.area * self.data.law.energy(&f);
+            w += el.area * law.energy(&f);
         }
         w
     }
@@ -277,10 +312,11 @@ impl ElasticBody for PlaneBody {
         out.iter_mut().for_each(|v| *v = 0.0);
         for e in 0..self.elements.len() {
             let f = self.deformation_gradient(u, e);
-            if !self.data.law.admissible(&f) {
+            let law = self.materials.law(e);
+            if !law.admissible(&f) {
                 return false;
             }
-            let p = self.data.law.piola(&f);
+            let p = law.piola(&f);
             self.scatter_stress(e, &p, out);
         }
         true
@@ -289,7 +325,8 @@ impl ElasticBody for PlaneBody {
     fn add_tangent(&self, u: &[f64], scale: f64, values: &mut [f64]) {
         for e in 0..self.elements.len() {
             let f = self.deformation_gradient(u, e);
-            let k = self.element_matrix(e, scale, false, |df| self.data.law.tangent(&f, df));
+            let law = self.materials.law(e);
+            let k = self.element_matrix(e, scale, false, |df| law.tangent(&f, df));
             self.ops.pattern.add_element(values, e, &k);
         }
     }
@@ -299,10 +336,11 @@ impl ElasticBody for PlaneBody {
         for e in 0..self.elements.len() {
             let f0 = self.deformation_gradient(u0, e);
             let f1 = self.deformation_gradient(u1, e);
-            if !self.data.law.admissible(&f1) {
+            let law = self.materials.law(e);
+            if !law.admissible(&f1) {
                 return false;
             }
-            let p = self.data.law.discrete_gradient(&f0, &f1);
+            let p = law.discrete_gradient(&f0, &f1);
             self.scatter_stress(e, &p, out);
         }
         true
@@ -318,8 +356,9 @@ impl ElasticBody for PlaneBody {
         for e in 0..self.elements.len() {
             let f0 = self.deformation_gradient(u0, e);
             let f1 = self.deformation_gradient(u1, e);
+            let law = self.materials.law(e);
             let k = self.element_matrix(e, scale, true, |df| {
-                self.data.law.discrete_gradient_tangent(&f0, &f1, df)
+                law.discrete_gradient_tangent(&f0, &f1, df)
             });
             self.ops.pattern.add_element(values, e, &k);
         }
@@ -329,8 +368,9 @@ impl ElasticBody for PlaneBody {
         for e in 0..self.elements.len() {
             let f0 = self.deformation_gradient(u0, e);
             let f1 = self.deformation_gradient(u1, e);
+            let law = self.materials.law(e);
             let k = self.element_matrix(e, scale, false, |df| {
-                self.data.law.discrete_gradient_tangent(&f0, &f1, df)
+                law.discrete_gradient_tangent(&f0, &f1, df)
             });
             let mut w = [0.0; 36];
             for p in 0..6 {
@@ -403,7 +443,7 @@ impl ElasticBody for PlaneBody {
     }
 
     fn wave_speed(&self) -> f64 {
-        self.data.law.wave_speed(self.data.density)
+        self.materials.wave_speed()
     }
 
     fn h_min(&self) -> f64 {
@@ -411,7 +451,7 @@ impl ElasticBody for PlaneBody {
     }
 
     fn describe(&self) -> String {
-        format!(
+        let mut text = format!(
             "plane-strain body: {} nodes, {} P1 triangles, {} free dofs, {}, ρ = {}, {:?} mass",
             self.data.mesh.nodes().len(),
             self.elements.len(),
@@ -419,6 +459,16 @@ impl ElasticBody for PlaneBody {
             self.data.law.describe(),
             self.data.density,
             self.data.mass
-        )
+        );
+        for r in &self.data.regions {
+            text.push_str(&format!(
+                "; region \"{}\" ({} triangles): {}, ρ = {}",
+                r.name,
+                r.triangles.len(),
+                r.law.describe(),
+                r.density
+            ));
+        }
+        text
     }
 }

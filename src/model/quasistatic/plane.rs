@@ -295,9 +295,14 @@ impl PlaneProblem {
 
     /// The region of triangle `e`, if any.
     fn region_of(&self, e: usize) -> Option<&MaterialRegion> {
+        self.region_index(e).map(|r| &self.regions[r])
+    }
+
+    /// The index in `regions` of the region of triangle `e`, `None` where the defaults apply.
+    pub fn region_index(&self, e: usize) -> Option<usize> {
         self.regions
             .iter()
-            .find(|r| r.triangles.binary_search(&e).is_ok())
+            .position(|r| r.triangles.binary_search(&e).is_ok())
     }
 
     /// A (viscosity) on triangle `e`.

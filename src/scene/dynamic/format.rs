@@ -47,6 +47,10 @@ pub struct DynamicSceneFile {
     /// `[solver]`: the Newton iteration of each step and the solver path.
     #[serde(default)]
     pub solver: DynamicSolverSection,
+    /// `[[region]]`: regions of a Gmsh body (`body.shape = "gmsh"`) with their own density and/or
+    /// material.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub region: Vec<DynamicRegionSection>,
     /// The directory that a Gmsh `body.file` is relative to (the scene file's; not a key: set by
     /// [`crate::scene::Scene::load`]; `None`: the working directory).
     #[serde(skip)]
@@ -123,6 +127,33 @@ pub struct DynamicMaterialSection {
     /// E > 0: Young's modulus.
     pub young: f64,
     /// κ in (−1, 1/2): Poisson's ratio, plane bodies only (required there, refused for a bar).
+    pub poisson: Option<f64>,
+}
+
+/// `[[region]]`: a 2D physical group of the body's Gmsh file with its own density and/or
+/// material; a key left out is the body's (`body.density`, the keys of `[material]`). Regions
+/// must not overlap.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicRegionSection {
+    /// The name of a 2D physical group of the body's `.msh` file.
+    pub group: String,
+    /// ρ of the region's triangles (default: `body.density`).
+    pub density: Option<f64>,
+    /// The region's law and constants, as in `[material]` (an inline table, e.g.
+    /// `material = { law = "neo_hooke", young = 5e6 }`); each key left out is `[material]`'s.
+    pub material: Option<RegionMaterialSection>,
+}
+
+/// `material` of a `[[region]]`: the keys of `[material]`, each optional (default: `[material]`'s).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionMaterialSection {
+    /// `"linear"`, `"st_venant_kirchhoff"` or `"neo_hooke"` (plane strain).
+    pub law: Option<String>,
+    /// Young's modulus E > 0.
+    pub young: Option<f64>,
+    /// Poisson's ratio ν in (−1, 1/2).
     pub poisson: Option<f64>,
 }
 

@@ -59,6 +59,11 @@
 //! mu0 = 0.3
 //! depth = 5e-4                 # g of (1.13); default: contact.depth
 //!
+//! # [[region]]                 # gmsh: a 2D physical group with its own density and/or material
+//! # group = "core"             # (a key left out is the body's: body.density, [material]'s keys;
+//! # density = 2000.0           # regions must not overlap)
+//! # material = { law = "st_venant_kirchhoff", young = 5e6 }
+//!
 //! [output]
 //! times = [0.01, 0.02]         # snapshots of the displacement
 //! vtk = false                  # `verify scene` also writes ParaView files (.vtu per time, .pvd)
@@ -92,8 +97,8 @@ use crate::scene::common::{check_model, parse_toml, reject_keys};
 pub use body::SceneBody;
 pub use format::{
     BodySection, DynamicContactSection, DynamicInitialSection, DynamicMaterialSection,
-    DynamicOutputSection, DynamicSceneFile, DynamicSolverSection, DynamicTimeSection,
-    FrictionSection, ValueSection, ValueSpec,
+    DynamicOutputSection, DynamicRegionSection, DynamicSceneFile, DynamicSolverSection,
+    DynamicTimeSection, FrictionSection, RegionMaterialSection, ValueSection, ValueSpec,
 };
 
 /// A validated dynamic scene.
@@ -140,6 +145,15 @@ impl DynamicScene {
         let (body, contact, u0, v0) = if b.shape == "bar" {
             let allowed = ["length", "elements", "area", "supports"];
             reject_keys("body", ("shape", "bar"), &given, &allowed)?;
+            if let Some(r) = file.region.first() {
+                return Err(InputError::new(
+                    "region[0].group",
+                    format!("\"{}\"", r.group),
+                    "a plane body read from a Gmsh file (body.shape = \"gmsh\") to name its \
+                     regions",
+                )
+                .into());
+            }
             bar::bar(&file)?
         } else {
             plane::plane(&file, plane::mesh(b, &given, file.base_dir.as_deref())?)?

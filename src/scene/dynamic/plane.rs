@@ -10,7 +10,7 @@ use crate::mesh::generators::{annulus, disk};
 use crate::mesh::gmsh::GmshMesh;
 use crate::mesh::triangle::{Grading, TriangleMesh};
 use crate::model::dynamic::contact_model::ContactModel;
-use crate::model::dynamic::plane_body::{PlaneBody, PlaneBodyData};
+use crate::model::dynamic::plane_body::{BodyRegion, PlaneBody, PlaneBodyData};
 use crate::model::quasistatic::plane::BoundarySelector;
 use crate::scene::boundary::{
     dirichlet_parts, require_parts_selected, selector, traction_parts, Selection,
@@ -116,6 +116,81 @@ fn contact_selection(c: &DynamicContactSection) -> Option<Selection<'_>> {
     })
 }
 
+/// The plane-strain law `law` with Young's modulus `young` and Poisson's ratio `poisson`; errors
+/// name `{prefix}.law`, `{prefix}.young`, `{prefix}.poisson`.
+fn hyperelastic(
+    prefix: &str,
+    law: &str,
+    young: f64,
+    poisson: f64,
+) -> Result<Arc<dyn Hyperelastic2d>, InputError> {
+    Ok(match law {
+        "linear" => Arc::new(
+            LinearElastic::from_young_poisson(young, poisson).map_err(|e| e.within(prefix))?,
+        ),
+        "st_venant_kirchhoff" => Arc::new(
+            StVenantKirchhoff::from_young_poisson(young, poisson).map_err(|e| e.within(prefix))?,
+        ),
+        "neo_hooke" => {
+            Arc::new(NeoHooke::from_young_poisson(young, poisson).map_err(|e| e.within(prefix))?)
+        }
+        other => {
+            return Err(InputError::new(
+                format!("{prefix}.law"),
+                format!("\"{other}\""),
+                "\"linear\", \"st_venant_kirchhoff\" or \"neo_hooke\"",
+            ))
+        }
+    })
+}
+
+/// The regions of `[[region]]` (section i named `region[i]`) of a body read from `gmsh`, each key
+/// left out taken from the body (`body.density`, `[material]`, whose law is `body_law`).
+fn regions(
+    file: &DynamicSceneFile,
+    gmsh: Option<&GmshMesh>,
+    body_law: &Arc<dyn Hyperelastic2d>,
+) -> Result<Vec<BodyRegion>, Error> {
+    let mut out = Vec::with_capacity(file.region.len());
+    for (i, r) in file.region.iter().enumerate() {
+        let prefix = format!("region[{i}]");
+        let Some(gmsh) = gmsh else {
+            return Err(InputError::new(
+                format!("{prefix}.group"),
+                format!("\"{}\"", r.group),
+                "a body read from a Gmsh file (body.shape = \"gmsh\") to name its regions",
+            )
+            .into());
+        };
+        let triangles = gmsh.region(&format!("{prefix}.group"), &r.group)?.to_vec();
+        let body = &file.material;
+        let law = match &r.material {
+            None => body_law.clone(),
+            Some(m) => {
+                let poisson = m.poisson.or(body.poisson).ok_or_else(|| {
+                    missing(
+                        format!("{prefix}.material.poisson"),
+                        "a Poisson ratio in (−1, 1/2)",
+                    )
+                })?;
+                hyperelastic(
+                    &format!("{prefix}.material"),
+                    m.law.as_deref().unwrap_or(&body.law),
+                    m.young.unwrap_or(body.young),
+                    poisson,
+                )?
+            }
+        };
+        out.push(BodyRegion {
+            name: r.group.clone(),
+            triangles,
+            density: r.density.unwrap_or(file.body.density),
+            law,
+        });
+    }
+    Ok(out)
+}
+
 /// The plane body on `mesh` with the material, boundary parts, body force, contact and initial
 /// state of the scene `file`.
 pub(super) fn plane(
@@ -127,27 +202,8 @@ pub(super) fn plane(
     let poisson = m
         .poisson
         .ok_or_else(|| missing("material.poisson", "a Poisson ratio in (−1, 1/2)"))?;
-    let law: Arc<dyn Hyperelastic2d> = match m.law.as_str() {
-        "linear" => Arc::new(
-            LinearElastic::from_young_poisson(m.young, poisson)
-                .map_err(|e| e.within("material"))?,
-        ),
-        "st_venant_kirchhoff" => Arc::new(
-            StVenantKirchhoff::from_young_poisson(m.young, poisson)
-                .map_err(|e| e.within("material"))?,
-        ),
-        "neo_hooke" => Arc::new(
-            NeoHooke::from_young_poisson(m.young, poisson).map_err(|e| e.within("material"))?,
-        ),
-        other => {
-            return Err(InputError::new(
-                "material.law",
-                format!("\"{other}\""),
-                "\"linear\", \"st_venant_kirchhoff\" or \"neo_hooke\"",
-            )
-            .into())
-        }
-    };
+    let law = hyperelastic("material", &m.law, m.young, poisson)?;
+    let regions = regions(file, gmsh, &law)?;
     let dirichlet = dirichlet_parts(&file.dirichlet, gmsh)?;
     let traction = traction_parts(&file.traction, gmsh)?;
     let contact_part = match file.contact.as_ref().and_then(contact_selection) {
@@ -168,6 +224,7 @@ pub(super) fn plane(
         traction,
         body_force,
         mass: file.body.mass,
+        regions,
     })?);
     let contact = match &file.contact {
         None => None,

@@ -454,7 +454,7 @@ fn write_plots(
                 .map(|(t, u)| {
                     let deformed = mesh.displaced(&p.nodal(u), 1.0);
                     let density: Vec<f64> = (0..mesh.triangles().len())
-                        .map(|el| p.data().law.energy(&p.deformation_gradient(u, el)))
+                        .map(|el| p.law_of(el).energy(&p.deformation_gradient(u, el)))
                         .collect();
                     let mut plot = TriangleMeshPlot::new(
                         format!("t = {t:.4e}: W(F)"),

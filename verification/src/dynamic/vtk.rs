@@ -9,12 +9,14 @@
 //! `friction_traction` T_i and `slip_velocity` (the tangential velocity of the node: the
 //! foundation is at rest).
 //!
-//! Cell data: `strain`, `stress` (full 3 × 3 tensors), `von_mises`, `body_id` (0), from
-//! [`contactlab::material::stress_state`]: the small-strain law's ε and σ, the finite-strain laws'
-//! Green–Lagrange E and Cauchy σ = J⁻¹ P Fᵀ, with σ_33 of plane strain, and
-//! σ_vM = (½[(σ11 − σ22)² + (σ22 − σ33)² + (σ33 − σ11)²] + 3 σ12²)^{1/2}. A bar is a line series:
-//! points (x, 0, 0), one line cell per element, strain F − 1 and stress P(F) as the 11 entry of
-//! the tensors (a uniaxial state, σ_vM = |P|).
+//! Cell data: `body_id` (0), `region` (the index of the element's `[[region]]` + 1, 0 where the
+//! body's own material applies; 0 on a bar), `strain`, `stress` (full 3 × 3 tensors) and
+//! `von_mises` from [`contactlab::material::stress_state`] with each element's law: the
+//! small-strain law's ε and σ, the finite-strain laws' Green–Lagrange E and Cauchy
+//! σ = J⁻¹ P Fᵀ, with σ_33 of plane strain, and
+//! σ_vM = (½[(σ11 − σ22)² + (σ22 − σ33)² + (σ33 − σ11)²] + 3 σ12²)^{1/2}. A bar is a line
+//! series: points (x, 0, 0), one line cell per element, strain F − 1 and stress P(F) as the 11
+//! entry of the tensors (a uniaxial state, σ_vM = |P|).
 
 use contactlab::material::stress_state::hyperelastic_state;
 use contactlab::model::dynamic::record::RecordedRun;
@@ -79,7 +81,7 @@ pub fn frames(scene: &DynamicScene, run: &RecordedRun) -> Result<Vec<Frame>, Str
                 let n = mesh.nodes().len();
                 let (un, vn) = (p.nodal(u), p.nodal(v));
                 let states: Vec<_> = (0..mesh.triangles().len())
-                    .map(|e| hyperelastic_state(&*p.data().law, &p.deformation_gradient(u, e)))
+                    .map(|e| hyperelastic_state(p.law_of(e), &p.deformation_gradient(u, e)))
                     .collect();
                 let mut point_data = vec![
                     Array::plane_vectors(
@@ -102,6 +104,12 @@ pub fn frames(scene: &DynamicScene, run: &RecordedRun) -> Result<Vec<Frame>, Str
                         ),
                         Array::scalars("von_mises", states.iter().map(|s| s.von_mises()).collect()),
                         Array::labels("body_id", vec![0; states.len()]),
+                        Array::labels(
+                            "region",
+                            (0..states.len())
+                                .map(|e| p.region_of(e).map_or(0, |r| r as i32 + 1))
+                                .collect(),
+                        ),
                     ],
                 }
             }
@@ -134,6 +142,7 @@ pub fn frames(scene: &DynamicScene, run: &RecordedRun) -> Result<Vec<Frame>, Str
                         ),
                         Array::scalars("von_mises", stress.iter().map(|s| s.abs()).collect()),
                         Array::labels("body_id", vec![0; n - 1]),
+                        Array::labels("region", vec![0; n - 1]),
                     ],
                 }
             }

@@ -451,6 +451,7 @@ impl DynamicManufactured {
             traction,
             body_force: self.vector_field(|m, x, y, t, c| m.body_force(x, y, t)[c]),
             mass,
+            regions: Vec::new(),
         })
         .map_err(|e| e.to_string())
     }

@@ -12,10 +12,12 @@
 //!
 //! Cell data: `strain` ε(u) of P1 (in-plane; 33 entry 0), `stress` σ = A ε(w) + B ε(u) as the
 //! solver records it with σ_33, `von_mises` of (σ_11, σ_22, σ_33, σ_12)
-//! ([`contactlab::material::stress_state::von_mises`]), `body_id` (0). σ_33 = 0 (plane stress)
-//! unless `[elasticity] law = "plane_strain"`: then σ_33 = a1_B tr ε(u) + a1_A tr ε(w)
-//! (= κ (σ_11 + σ_22) for the elastic part; a1_A the viscosity's first constant, μ for the
-//! paper's and the saturating law, whose saturating term has no 33 component).
+//! ([`contactlab::material::stress_state::von_mises`]), `body_id` (0), `region` (the index of the
+//! triangle's `[[region]]` + 1, 0 where `[viscosity]` and `[elasticity]` apply). σ_33 = 0 (plane
+//! stress) unless the triangle's B is `law = "plane_strain"`: then σ_33 = a1_B tr ε(u) +
+//! a1_A tr ε(w) with the triangle's A and B (= κ (σ_11 + σ_22) for the elastic part; a1_A the
+//! viscosity's first constant, μ for the paper's and the saturating law, whose saturating term
+//! has no 33 component).
 
 use contactlab::contact::normal_law::SpaceTime;
 use contactlab::fem::triangle_p1::P1Triangle;
@@ -76,21 +78,43 @@ pub fn frames(scene: &PlaneScene, sol: &PlaneSolution) -> Result<Vec<Frame>, Str
     let dofs = PlaneDofs::new(problem, roles).map_err(|e| e.to_string())?;
     let n = sol.nodes.len();
     let (rows, mass) = contact_projection(&dofs, n);
-    let plane_strain = scene.file.elasticity.law == "plane_strain";
-    let a1 = if plane_strain {
-        Some((
-            first_constant(&*problem.viscosity, &scene.file.viscosity, "viscosity")?,
-            first_constant(&*problem.elasticity, &scene.file.elasticity, "elasticity")?,
-        ))
-    } else {
-        None
-    };
+    // (a1_A, a1_B) of each material (the scene's, then each region's) whose B is plane strain
+    let file = &scene.file;
+    let mut sections = vec![(&file.viscosity, &file.elasticity, String::new())];
+    for (r, region) in file.region.iter().enumerate() {
+        sections.push((
+            region.viscosity.as_ref().unwrap_or(&file.viscosity),
+            region.elasticity.as_ref().unwrap_or(&file.elasticity),
+            format!("region[{r}]."),
+        ));
+    }
+    let mut a1 = Vec::with_capacity(sections.len());
+    for (m, (viscosity, elasticity, prefix)) in sections.iter().enumerate() {
+        let (law_a, law_b) = match m.checked_sub(1) {
+            None => (&problem.viscosity, &problem.elasticity),
+            Some(r) => (
+                &problem.regions[r].viscosity,
+                &problem.regions[r].elasticity,
+            ),
+        };
+        a1.push(if elasticity.law == "plane_strain" {
+            Some((
+                first_constant(&**law_a, viscosity, &format!("{prefix}viscosity"))?,
+                first_constant(&**law_b, elasticity, &format!("{prefix}elasticity"))?,
+            ))
+        } else {
+            None
+        });
+    }
     let elements: Vec<P1Triangle> = sol
         .triangles
         .iter()
         .map(|t| P1Triangle::new([sol.nodes[t[0]], sol.nodes[t[1]], sol.nodes[t[2]]]))
         .collect();
     let points: Vec<[f64; 3]> = sol.nodes.iter().map(|p| [p[0], p[1], 0.0]).collect();
+    let regions: Vec<i32> = (0..elements.len())
+        .map(|e| problem.region_index(e).map_or(0, |r| r as i32 + 1))
+        .collect();
     let strains = |v: &[f64]| -> Vec<[f64; 3]> {
         sol.triangles
             .iter()
@@ -124,15 +148,15 @@ pub fn frames(scene: &PlaneScene, sol: &PlaneSolution) -> Result<Vec<Frame>, Str
     for s in &sol.snapshots {
         let eps_u = strains(&s.u);
         let eps_w = s.w.as_deref().map(strains);
-        let s33: Vec<f64> = match a1 {
-            Some((a1_a, a1_b)) => (0..elements.len())
-                .map(|e| {
+        let s33: Vec<f64> = (0..elements.len())
+            .map(|e| match a1[regions[e] as usize] {
+                Some((a1_a, a1_b)) => {
                     a1_b * (eps_u[e][0] + eps_u[e][1])
                         + eps_w.as_ref().map_or(0.0, |w| a1_a * (w[e][0] + w[e][1]))
-                })
-                .collect(),
-            None => vec![0.0; elements.len()],
-        };
+                }
+                None => 0.0,
+            })
+            .collect();
         let mut point_data = vec![Array::plane_vectors(
             "displacement",
             (0..n).map(|i| [s.u[2 * i], s.u[2 * i + 1]]),
@@ -177,6 +201,7 @@ pub fn frames(scene: &PlaneScene, sol: &PlaneSolution) -> Result<Vec<Frame>, Str
                     .collect(),
             ),
             Array::labels("body_id", vec![0; elements.len()]),
+            Array::labels("region", regions.clone()),
         ];
         frames.push(Frame {
             time: s.t,
@@ -307,5 +332,80 @@ vtk = true
         );
         assert!(points > 0.0);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn region_and_plane_strain_sigma_33_follow_each_triangles_materials() {
+        // The two-material strip of examples/meshes/bimaterial_strip.msh: "soft" takes the
+        // scene's laws, "stiff" its own (plane strain both; E, ν and μ_A differ). Each cell's
+        // `region` is its group's index + 1 and σ_33 = λ_B tr ε(u) + μ_A tr ε(w) with its own
+        // constants, λ_B = E ν / ((1 + ν)(1 − 2ν)) written here.
+        let text = r#"
+model = "plane"
+[geometry]
+shape = "gmsh"
+file = "../examples/meshes/bimaterial_strip.msh"
+[time]
+final_time = 1.0
+steps = 4
+scheme = "implicit"
+[viscosity]
+law = "paper"
+mu = 1.0
+eta = 2.0
+[elasticity]
+law = "plane_strain"
+young = 100.0
+poisson = 0.3
+[[region]]
+group = "stiff"
+viscosity = { law = "paper", mu = 3.0, eta = 4.0 }
+elasticity = { law = "plane_strain", young = 400.0, poisson = 0.2 }
+[[dirichlet]]
+group = "left"
+support = "clamped"
+[[traction]]
+group = "right"
+value = ["t", "-t"]
+[output]
+times = [1.0]
+"#;
+        let Ok(Scene::Plane(scene)) = Scene::from_toml_str(text, "strip.toml") else {
+            panic!("the test scene is a plane scene");
+        };
+        let sol = scene.solver().unwrap().solve(&scene.output).unwrap();
+        let frame = &frames(&scene, &sol).unwrap()[0];
+        let cell = |name: &str| frame.cell_data.iter().find(|a| a.name == name).unwrap();
+        let crate::vtk::Values::I32(region) = &cell("region").values else {
+            panic!("integer labels");
+        };
+        let stiff = &scene.problem.regions[0].triangles;
+        assert_eq!(stiff.len(), 44);
+        let crate::vtk::Values::F64(stress) = &cell("stress").values else {
+            panic!("floats");
+        };
+        let lambda = |e: f64, nu: f64| e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        let snap = &sol.snapshots[0];
+        let w = snap.w.as_ref().unwrap();
+        for (e, t) in sol.triangles.iter().enumerate() {
+            let in_stiff = stiff.binary_search(&e).is_ok();
+            assert_eq!(region[e], i32::from(in_stiff), "cell {e}");
+            let el = P1Triangle::new([sol.nodes[t[0]], sol.nodes[t[1]], sol.nodes[t[2]]]);
+            let tr = |v: &[f64]| {
+                let s = el.strain(&std::array::from_fn(|p| v[2 * t[p / 2] + p % 2]));
+                s[0] + s[1]
+            };
+            let (lb, mu_a) = if in_stiff {
+                (lambda(400.0, 0.2), 3.0)
+            } else {
+                (lambda(100.0, 0.3), 1.0)
+            };
+            let s33 = lb * tr(&snap.u) + mu_a * tr(w);
+            let got = stress[9 * e + 8];
+            assert!(
+                (got - s33).abs() <= 1e-12 * s33.abs().max(1e-3),
+                "cell {e}: {got} vs {s33}"
+            );
+        }
     }
 }

@@ -125,6 +125,7 @@ pub(crate) fn build(
             traction,
             body_force: [Field::Constant(0.0), Field::Constant(0.0)],
             mass: MassMatrix::Consistent,
+            regions: Vec::new(),
         })
         .map_err(|e| e.to_string())?,
     );
