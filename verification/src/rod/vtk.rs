@@ -9,7 +9,8 @@
 //! slip (1D).
 //!
 //! Cell data: `strain` u_x and `stress` σ = a w_x + b u_x ((4.1); b u_x alone at t_0) as the 11
-//! entry of the tensors, `von_mises` |σ| (uniaxial), `body_id` (0).
+//! entry of the tensors, `von_mises` |σ| (uniaxial), `body_id` (0), `region` (0: one material,
+//! as on a dynamic bar).
 
 use contactlab::contact::normal_law::SpaceTime;
 use contactlab::model::quasistatic::rod_output::RodSolution;
@@ -82,6 +83,7 @@ pub fn frames(scene: &RodScene, sol: &RodSolution) -> Result<Vec<Frame>, String>
                 Array::plane_tensors("stress", stress.iter().map(|&e| ([e, 0.0, 0.0], 0.0))),
                 Array::scalars("von_mises", stress.iter().map(|s| s.abs()).collect()),
                 Array::labels("body_id", vec![0; n - 1]),
+                Array::labels("region", vec![0; n - 1]),
             ],
         });
     }
