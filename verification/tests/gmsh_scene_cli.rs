@@ -113,3 +113,50 @@ fn a_broken_or_unsupported_mesh_is_a_clear_error_and_writes_nothing() {
     }
     let _ = std::fs::remove_dir_all(&base);
 }
+
+#[test]
+fn a_dynamic_gmsh_body_is_sized_against_the_memory_limit_before_its_operators() {
+    // The O-ring (236 nodes) under a 10 KiB limit: refused naming body.file and its node count;
+    // with 10¹³ steps under the default limit: refused naming time.steps. Nothing is written.
+    let example = root().join("examples/scenes/dynamic_gmsh_o_ring.toml");
+    let out = temp("memory");
+    let o = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .arg("scene")
+        .arg(&example)
+        .args(["--max-memory", "10K", "--out"])
+        .arg(&out)
+        .output()
+        .expect("the verify binary runs");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("body.file") && err.contains("236 nodes"),
+        "{err}"
+    );
+    let base = temp("steps");
+    std::fs::create_dir_all(&base).expect("tmp");
+    let text = std::fs::read_to_string(&example).expect("the example");
+    let scene_path = base.join("many_steps.toml");
+    let steps = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("steps"))
+        .expect("a steps line")
+        .to_string();
+    std::fs::write(
+        &scene_path,
+        text.replace(&steps, "steps = 10000000000000").replace(
+            "../meshes/",
+            &format!("{}/", root().join("examples/meshes").display()),
+        ),
+    )
+    .expect("write the scene");
+    let o = scene(&scene_path, &base.join("out"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("time.steps"), "{err}");
+    assert!(files_in(&base.join("out"))
+        .iter()
+        .all(|f| f.starts_with('.')));
+    let _ = std::fs::remove_dir_all(&base);
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -156,7 +156,18 @@ impl DynamicScene {
             }
             bar::bar(&file)?
         } else {
-            plane::plane(&file, plane::mesh(b, &given, file.base_dir.as_deref())?)?
+            let (mesh, gmsh) = plane::mesh(b, &given, file.base_dir.as_deref())?;
+            if gmsh.is_some() {
+                // a Gmsh body's counts are known once the file is read (the reader bounds the
+                // file and its counts): the estimate before the operators are built
+                let written = format!(
+                    "{} ({} nodes)",
+                    b.file.as_deref().unwrap_or_default(),
+                    mesh.nodes().len()
+                );
+                require_run_memory(&file, "body.file", written, mesh.nodes().len() as f64, 2.0)?;
+            }
+            plane::plane(&file, (mesh, gmsh))?
         };
         let dyn_body: Arc<dyn ElasticBody> = match &body {
             SceneBody::Bar(b) => b.clone(),
@@ -232,7 +243,8 @@ impl DynamicScene {
 /// The bytes a dynamic run holds, from the counts alone (before the mesh is built): per dof the
 /// operators and factor (fill ~ n log₂ n) and the work vectors; per output time u and v; per step
 /// the audit's row (about 16 values). The node count by shape: bar M + 1, rectangle
-/// (n_x + 1)(n_y + 1), disk at most 4 (rings + 1)², annulus (radial + 1) × around.
+/// (n_x + 1)(n_y + 1), disk at most 4 (rings + 1)², annulus (radial + 1) × around; a Gmsh body
+/// the node count of its file, once read.
 fn dynamic_memory(file: &DynamicSceneFile) -> Result<(), Error> {
     let b = &file.body;
     let f = |v: Option<usize>| v.map_or(0.0, |n| n as f64);
@@ -257,8 +269,21 @@ fn dynamic_memory(file: &DynamicSceneFile) -> Result<(), Error> {
             (f(b.radial) + 1.0) * f(b.around),
             2.0,
         ),
+        // "gmsh": checked once the file is read, from its node count (require_run_memory)
         _ => return Ok(()),
     };
+    require_run_memory(file, field, written, nodes, dim)
+}
+
+/// The estimate of [`dynamic_memory`] for a body of `nodes` nodes in `dim` dimensions, against
+/// the memory limit; `field` and `written` name the key that sets the size.
+fn require_run_memory(
+    file: &DynamicSceneFile,
+    field: &str,
+    written: String,
+    nodes: f64,
+    dim: f64,
+) -> Result<(), Error> {
     let dofs = dim * nodes;
     let per_mesh = 8.0 * dofs * (70.0 + 4.0 * dofs.max(2.0).log2())
         + 8.0 * 2.0 * dofs * file.output.times.len() as f64;
