@@ -135,6 +135,22 @@ pub enum SolveError {
         residual: f64,
         tolerance: f64,
     },
+    /// The active set of a contact problem kept changing between the same states: the
+    /// semismooth Newton method cycled instead of converging.
+    #[error(
+        "step {step} (t = {time}): the contact active set cycles (period {period}, {iterations} \
+         iterations, residual {residual:e}); changing constraints: {constraints} — a smaller step, \
+         or penalty enforcement, usually settles it"
+    )]
+    ActiveSetCycle {
+        step: usize,
+        time: f64,
+        iterations: usize,
+        residual: f64,
+        period: usize,
+        /// The constraints whose state changed within the cycle (slave node and master).
+        constraints: String,
+    },
     /// A non-finite number appeared; nothing after it would be meaningful.
     #[error("step {step} (t = {time}): non-finite {quantity} ({value}){hint}")]
     NonFinite {

@@ -64,6 +64,30 @@ impl SymmetricPattern {
         }
     }
 
+    /// The pattern of the upper-triangle entries (i, j), i ≤ j, listed by column: `cols[j]` holds
+    /// the rows i ≤ j of column j (in any order, repeats allowed). Such a pattern has no element
+    /// slots: fill it through [`Self::slot`].
+    pub fn from_columns(mut cols: Vec<Vec<usize>>) -> Self {
+        let n = cols.len();
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for (j, c) in cols.iter_mut().enumerate() {
+            c.sort_unstable();
+            c.dedup();
+            debug_assert!(c.last().is_none_or(|&i| i <= j));
+            row_idx.extend_from_slice(c);
+            col_ptr.push(row_idx.len());
+        }
+        Self {
+            n,
+            col_ptr,
+            row_idx,
+            slots: Vec::new(),
+            local: 0,
+        }
+    }
+
     /// The order n.
     pub fn order(&self) -> usize {
         self.n

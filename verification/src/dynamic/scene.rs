@@ -108,6 +108,18 @@ pub fn error_json(e: &LabError) -> serde_json::Value {
             "message": e.to_string(), "kind": "non_finite", "step": step, "time": time,
             "quantity": quantity, "value": value.to_string(), "hint": hint,
         }),
+        LabError::Solve(SolveError::ActiveSetCycle {
+            step,
+            time,
+            iterations,
+            residual,
+            period,
+            constraints,
+        }) => json!({
+            "message": e.to_string(), "kind": "active_set_cycle", "step": step, "time": time,
+            "iterations": iterations, "residual": finite_or_text(*residual), "period": period,
+            "constraints": constraints,
+        }),
         LabError::Solve(SolveError::NoEquilibrium { step, time, reason }) => json!({
             "message": e.to_string(), "kind": "no_equilibrium", "step": step, "time": time,
             "reason": reason,

@@ -1,0 +1,622 @@
+//! One step of the multibody system: the semismooth Newton method on the increment d and the
+//! candidates' multipliers, with segment switching (docs/multibody.md §5).
+//!
+//! Each iteration assembles R = (R_u, C_N, C_T) and the Newton matrix ([`StepSystem`]), updates
+//! the candidates' active and stick/slip states from their complementarity functions
+//! ([`Candidate::contribute`]) and takes the full Newton step (cut back only where a body would be
+//! inverted, det F ≤ 0). A slave node whose projection leaves its segment (ξ < 0 or ξ > 1) moves
+//! to the neighbouring segment of the master surface, or is released at the master's free end;
+//! the system is then laid out anew.
+//!
+//! Convergence: the states did not change in the iteration and every row is within its tolerance
+//! — ‖R_u‖_∞ ≤ tol · s (s the largest sum of magnitudes of a row's terms, its round-off scale) and
+//! |C| ≤ tol · s + 16 ε c |x| (c |x| the round-off of c g). A run at its round-off floor (states
+//! unchanged, ‖R‖ not halved over three iterations, within 100 × the tolerance) is accepted and
+//! counted. A run out of iterations whose states repeated is an [`SolveError::ActiveSetCycle`],
+//! otherwise [`SolveError::NewtonNotConverged`].
+
+use crate::error::SolveError;
+use crate::model::dynamic::body::ElasticBody;
+use crate::model::dynamic::newton::NewtonParams;
+use crate::model::multibody::bodies::BodySet;
+use crate::model::multibody::constraint::{Candidate, PairLaw, RowScale, Tangent};
+use crate::model::multibody::invariants::{Evaluation, InvariantForms, Local6};
+use crate::model::multibody::scheme::MultibodyScheme;
+use crate::model::multibody::surface::ContactSurface;
+use crate::model::multibody::system::StepSystem;
+
+/// How far past a segment's end (in ξ) a projection goes before the node switches segment.
+pub const SWITCH_TOLERANCE: f64 = 1e-9;
+
+/// How far past a master's free end (in ξ) a converged node goes before it is released: 2 % of
+/// the end segment. A node level with the end — two bars meeting face to face, whose corners
+/// drift by the P1 mesh's small transverse motion (measured: ξ − 1 ≈ 1e−4 on the head-on bars) —
+/// stays on it; a node that slides off the end leaves it.
+pub const RELEASE_TOLERANCE: f64 = 0.02;
+
+/// The step's time integrator, or a static equilibrium.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepKind {
+    Dynamic(MultibodyScheme),
+    Static,
+}
+
+impl StepKind {
+    fn evaluation(self) -> Evaluation {
+        match self {
+            StepKind::Dynamic(s) => s.evaluation(),
+            StepKind::Static => Evaluation::End,
+        }
+    }
+}
+
+/// Where the step is (for errors).
+#[derive(Debug, Clone, Copy)]
+pub struct StepAt {
+    pub step: usize,
+    pub time: f64,
+}
+
+/// The master of a pair as the step sees it: a surface (with its body) or the foundation.
+#[derive(Debug, Clone, Copy)]
+pub enum MasterRef<'a> {
+    Surface(&'a ContactSurface),
+    Foundation,
+}
+
+/// What a step's Newton method reports.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct StepReport {
+    pub iterations: usize,
+    pub switches: usize,
+    pub releases: usize,
+    pub analyses: usize,
+    pub floor_stop: bool,
+    /// ‖R_u‖_∞ at convergence and the bound ‖d‖₁ ‖R_u‖_∞ + Σ |λ| |C| / c.
+    pub residual: f64,
+    pub newton_bound: f64,
+    /// ‖R_u‖₁ and Σ |x_{n+1/2}| |R_u| over the nodes at convergence: the momentum and angular
+    /// momentum a step's residual can move (k times these, [`super::audit`]).
+    pub residual_sum: f64,
+    pub residual_moment: f64,
+    /// Σ_i s_i |d_i| (s_i the sum of the magnitudes of row i's terms): the round-off scale of the
+    /// step's work d·R, and Σ_i s_i, Σ_i |x| s_i: those of its momentum and angular momentum.
+    pub work_scale: f64,
+    pub force_scale: f64,
+    pub moment_scale: f64,
+}
+
+/// Buffers of the step, allocated once per run.
+#[derive(Debug)]
+pub struct StepWorkspace {
+    /// Per body: the constant block α M + θ K of a linear body (values on its pattern).
+    linear_blocks: Vec<Option<Vec<f64>>>,
+    sym: Vec<Vec<f64>>,
+    skew: Vec<Vec<f64>>,
+    r: Vec<f64>,
+    scale: Vec<f64>,
+    force: Vec<f64>,
+    md: Vec<f64>,
+    u1: Vec<f64>,
+    um: Vec<f64>,
+    trial: Vec<f64>,
+    /// The constant part b of R_u = α M d + F − b.
+    pub b: Vec<f64>,
+    pub system: Option<StepSystem>,
+    pub forms: InvariantForms,
+}
+
+impl StepWorkspace {
+    /// Buffers for `bodies` and the step kind (k: the step size; unused for a static step).
+    pub fn new(bodies: &BodySet, kind: StepKind, k: f64) -> Self {
+        let (alpha, theta) = match kind {
+            StepKind::Dynamic(s) => (s.alpha(k), if s.is_midpoint_type() { 0.5 } else { 1.0 }),
+            StepKind::Static => (0.0, 1.0),
+        };
+        let linear_blocks = bodies
+            .bodies()
+            .iter()
+            .map(|b| {
+                b.linear_stiffness().map(|kk| {
+                    kk.iter()
+                        .zip(b.mass())
+                        .map(|(k, m)| alpha * m + theta * k)
+                        .collect()
+                })
+            })
+            .collect();
+        let n = bodies.dofs();
+        Self {
+            linear_blocks,
+            sym: bodies
+                .bodies()
+                .iter()
+                .map(|b| vec![0.0; b.pattern().nnz()])
+                .collect(),
+            skew: bodies
+                .bodies()
+                .iter()
+                .map(|b| {
+                    if matches!(kind, StepKind::Dynamic(MultibodyScheme::EnergyMomentum))
+                        && !b.is_linear()
+                    {
+                        vec![0.0; b.pattern().nnz()]
+                    } else {
+                        Vec::new()
+                    }
+                })
+                .collect(),
+            r: Vec::new(),
+            scale: vec![0.0; n],
+            force: vec![0.0; n],
+            md: vec![0.0; n],
+            u1: vec![0.0; n],
+            um: vec![0.0; n],
+            trial: vec![0.0; n],
+            b: vec![0.0; n],
+            system: None,
+            forms: InvariantForms::new(),
+        }
+    }
+}
+
+/// The data of one step.
+#[derive(Debug, Clone, Copy)]
+pub struct StepData<'a> {
+    pub bodies: &'a BodySet,
+    pub laws: &'a [PairLaw],
+    pub masters: &'a [MasterRef<'a>],
+    pub kind: StepKind,
+    pub k: f64,
+    pub u0: &'a [f64],
+    pub at: StepAt,
+}
+
+/// The body part of the residual and the Newton matrix at u₁ = u₀ + d: R_u = α M d + F − b into
+/// `ws.r[..n]` (and its row scales into `ws.scale`), the blocks into `ws.sym` / `ws.skew`. `false`
+/// for an inadmissible state (det F ≤ 0 somewhere).
+fn assemble_bodies(data: &StepData<'_>, d: &[f64], ws: &mut StepWorkspace, matrix: bool) -> bool {
+    let bodies = data.bodies;
+    let n = bodies.dofs();
+    let alpha = match data.kind {
+        StepKind::Dynamic(s) => s.alpha(data.k),
+        StepKind::Static => 0.0,
+    };
+    for i in 0..n {
+        ws.u1[i] = data.u0[i] + d[i];
+        ws.um[i] = 0.5 * (data.u0[i] + ws.u1[i]);
+    }
+    bodies.mass_mul(d, &mut ws.md);
+    for (bi, body) in bodies.bodies().iter().enumerate() {
+        let rg = bodies.range(bi);
+        let (u0, u1, um) = (&data.u0[rg.clone()], &ws.u1[rg.clone()], &ws.um[rg.clone()]);
+        let f = &mut ws.force[rg.clone()];
+        let scheme = match data.kind {
+            StepKind::Dynamic(s) => Some(s),
+            StepKind::Static => None,
+        };
+        let midpoint_state = matches!(
+            scheme,
+            Some(MultibodyScheme::Midpoint | MultibodyScheme::EnergyMomentum)
+        );
+        if let (Some(kk), Some(block)) = (body.linear_stiffness(), &ws.linear_blocks[bi]) {
+            // a linear body: F = K u at the scheme's state (the discrete gradient is K u_{1/2})
+            body.pattern()
+                .symmetric_mul(kk, if midpoint_state { um } else { u1 }, f);
+            if matrix {
+                ws.sym[bi].copy_from_slice(block);
+            }
+        } else {
+            let ok = match scheme {
+                Some(MultibodyScheme::EnergyMomentum) => body.discrete_gradient_force(u0, u1, f),
+                Some(MultibodyScheme::Midpoint) => body.internal_force(um, f),
+                _ => body.internal_force(u1, f),
+            };
+            if !ok {
+                return false;
+            }
+            if matrix {
+                let sym = &mut ws.sym[bi];
+                for (s, m) in sym.iter_mut().zip(body.mass()) {
+                    *s = alpha * m;
+                }
+                match scheme {
+                    Some(MultibodyScheme::EnergyMomentum) => {
+                        body.add_discrete_gradient_tangent(u0, u1, 1.0, sym);
+                        let skew = &mut ws.skew[bi];
+                        skew.iter_mut().for_each(|v| *v = 0.0);
+                        body.add_discrete_gradient_skew(u0, u1, 1.0, skew);
+                    }
+                    Some(MultibodyScheme::Midpoint) => body.add_tangent(um, 0.5, sym),
+                    _ => body.add_tangent(u1, 1.0, sym),
+                }
+            }
+        }
+    }
+    for i in 0..n {
+        let inertia = alpha * ws.md[i];
+        ws.r[i] = inertia + ws.force[i] - ws.b[i];
+        ws.scale[i] = inertia.abs() + ws.force[i].abs() + ws.b[i].abs();
+    }
+    true
+}
+
+/// A hash of the candidates' states (active, stick/slip, segment): what must not change in the
+/// converged iteration, and what repeats when the active set cycles.
+fn signature(candidates: &[Candidate]) -> Vec<(bool, i8, usize)> {
+    candidates
+        .iter()
+        .map(|c| {
+            let t = match c.tangent {
+                Tangent::Free => 0,
+                Tangent::Stick => 1,
+                Tangent::Slip(d) => {
+                    if d > 0.0 {
+                        2
+                    } else {
+                        3
+                    }
+                }
+            };
+            (c.active, t, c.segment.unwrap_or(usize::MAX))
+        })
+        .collect()
+}
+
+/// Re-pairs candidate `c` with segment `segment` of its master surface, at the start positions
+/// u₀ (g₀, τ₀ and ℓ of the new pairing).
+pub fn pair_with_segment(
+    c: &mut Candidate,
+    bodies: &BodySet,
+    slave_body: usize,
+    master: &ContactSurface,
+    segment: usize,
+    u0: &[f64],
+    forms: &InvariantForms,
+) {
+    let [n1, n2] = master.segments[segment];
+    let mb = master.body;
+    let xs = bodies.reference(slave_body, c.slave);
+    let (x1, x2) = (bodies.reference(mb, n1), bodies.reference(mb, n2));
+    c.segment = Some(segment);
+    c.dofs = [
+        bodies.dof(slave_body, c.slave, 0),
+        bodies.dof(slave_body, c.slave, 1),
+        bodies.dof(mb, n1, 0),
+        bodies.dof(mb, n1, 1),
+        bodies.dof(mb, n2, 0),
+        bodies.dof(mb, n2, 1),
+    ];
+    c.reference = Local6::from_column_slice(&[xs[0], xs[1], x1[0], x1[1], x2[0], x2[1]]);
+    c.x0 = c.positions(u0);
+    let a = [c.x0[4] - c.x0[2], c.x0[5] - c.x0[3]];
+    c.ell = (a[0] * a[0] + a[1] * a[1]).sqrt();
+    let (g0, tau0) = c.gap_and_tangential(forms, &c.x0);
+    c.g0 = g0;
+    c.tau0 = tau0;
+}
+
+/// Solves one step: on return `d` holds the increment and the candidates their multipliers,
+/// states and g₁, τ₁. `slave_bodies[pair]` is the body of each pair's slave surface.
+pub fn solve_step(
+    data: &StepData<'_>,
+    slave_bodies: &[usize],
+    candidates: &mut Vec<Candidate>,
+    d: &mut [f64],
+    params: &NewtonParams,
+    max_switches: usize,
+    ws: &mut StepWorkspace,
+) -> Result<StepReport, SolveError> {
+    let n = data.bodies.dofs();
+    let at = data.kind.evaluation();
+    let mut report = StepReport::default();
+    let mut switch_count = vec![0usize; candidates.len()];
+    let mut prev_sig: Option<Vec<(bool, i8, usize)>> = None;
+    let mut history: Vec<Vec<(bool, i8, usize)>> = Vec::new();
+    let mut residuals: Vec<f64> = Vec::new();
+    let mut unchanged = 0usize;
+    let mut last = f64::INFINITY;
+    for iteration in 1..=params.max_iterations {
+        crate::run_control::check(|| {
+            format!(
+                "step {} (t = {}), Newton iteration {iteration}",
+                data.at.step, data.at.time
+            )
+        })?;
+        report.iterations = iteration;
+        // the layout of the system (anew after a switch or a release)
+        let relayout = match &ws.system {
+            Some(s) => !s.serves(candidates),
+            None => true,
+        };
+        if relayout {
+            let sys = StepSystem::new(data.bodies, candidates, data.laws)?;
+            report.analyses += 1;
+            ws.system = Some(sys);
+        } else if let Some(s) = &ws.system {
+            s.number(candidates);
+        }
+        let Some(mut sys) = ws.system.take() else {
+            unreachable!("laid out above")
+        };
+        let total = sys.order();
+        ws.r.resize(total, 0.0);
+        if !assemble_bodies(data, d, ws, true) {
+            ws.system = Some(sys);
+            return Err(SolveError::NonFinite {
+                step: data.at.step,
+                time: data.at.time,
+                quantity: "stored energy (an element inverted, det F ≤ 0)".into(),
+                value: f64::INFINITY,
+                hint: " — try a smaller step".into(),
+            });
+        }
+        sys.clear();
+        for b in 0..data.bodies.len() {
+            sys.add_body(b, &ws.sym[b], &ws.skew[b]);
+        }
+        let s_u = ws
+            .scale
+            .iter()
+            .fold(0.0f64, |m, v| m.max(*v))
+            .max(f64::MIN_POSITIVE);
+        // the row scale c: the largest diagonal of the bodies' blocks
+        let c = {
+            let mut m = 0.0f64;
+            for b in 0..data.bodies.len() {
+                let p = data.bodies.body(b).pattern();
+                for i in 0..p.order() {
+                    if let Some(slot) = p.diagonal_slot(i) {
+                        m = m.max(ws.sym[b][slot].abs());
+                    }
+                }
+            }
+            m.max(f64::MIN_POSITIVE)
+        };
+        let scale = RowScale {
+            c,
+            regularization: 1e-12,
+        };
+        let mut worst = 0.0f64;
+        let mut bound_c = 0.0;
+        for (ci, cand) in candidates.iter_mut().enumerate() {
+            let x1 = cand.positions(&ws.u1);
+            let law = &data.laws[cand.pair];
+            let out = cand.contribute(&ws.forms, law, at, &x1, scale);
+            for (i, dof) in cand.dofs.iter().enumerate() {
+                if let Some(dof) = dof {
+                    ws.r[*dof] += out.r_u[i];
+                    ws.scale[*dof] += out.r_u[i].abs();
+                }
+            }
+            let xmax = x1.amax();
+            let tol_c = params.tolerance * s_u + 16.0 * f64::EPSILON * c * xmax;
+            if let Some(ln) = cand.ln {
+                ws.r[ln] = out.r_n;
+                worst = worst.max(out.r_n.abs() / tol_c);
+                bound_c += cand.lambda_n.abs() * out.r_n.abs() / c;
+            }
+            if let Some(lt) = cand.lt {
+                ws.r[lt] = out.r_t;
+                worst = worst.max(out.r_t.abs() / tol_c);
+                bound_c += cand.lambda_t.abs() * out.r_t.abs() / c;
+            }
+            sys.add_candidate(ci, &out.jac);
+        }
+        let s_u = ws
+            .scale
+            .iter()
+            .fold(0.0f64, |m, v| m.max(*v))
+            .max(f64::MIN_POSITIVE);
+        let r_u = ws.r[..n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if !r_u.is_finite() || !worst.is_finite() {
+            ws.system = Some(sys);
+            return Err(SolveError::NonFinite {
+                step: data.at.step,
+                time: data.at.time,
+                quantity: format!("step residual at Newton iteration {iteration}"),
+                value: r_u,
+                hint: " — the step's data overflow, or the scheme lost stability (try \
+                       energy_momentum or a smaller step)"
+                    .into(),
+            });
+        }
+        worst = worst.max(r_u / (params.tolerance * s_u));
+        let sig = signature(candidates);
+        let same = prev_sig.as_ref() == Some(&sig);
+        unchanged = if same { unchanged + 1 } else { 0 };
+        residuals.push(worst);
+        let floor = unchanged >= 3
+            && worst <= 100.0
+            && residuals.len() >= 4
+            && worst > 0.5 * residuals[residuals.len() - 4];
+        if same && (worst <= 1.0 || floor) {
+            // a node past the free end of its master (no neighbouring segment) leaves it: drop
+            // it and iterate again if it carried a force (a node in the dead zone of a convex
+            // master vertex, beyond both segments' ends, stays on the extended segment)
+            let beyond: Vec<bool> = candidates
+                .iter()
+                .map(|c| {
+                    let (Some(seg), MasterRef::Surface(m)) = (c.segment, data.masters[c.pair])
+                    else {
+                        return false;
+                    };
+                    let xi = c.xi(&ws.forms, &c.positions(&ws.u1));
+                    (xi > 1.0 + RELEASE_TOLERANCE && m.next[seg].is_none())
+                        || (xi < -RELEASE_TOLERANCE && m.previous[seg].is_none())
+                })
+                .collect();
+            if beyond.iter().any(|b| *b) {
+                let forced = candidates
+                    .iter()
+                    .zip(&beyond)
+                    .any(|(c, b)| *b && (c.active || c.lambda_t != 0.0));
+                report.releases += beyond.iter().filter(|b| **b).count();
+                let mut i = 0;
+                candidates.retain(|_| {
+                    i += 1;
+                    !beyond[i - 1]
+                });
+                let mut j = 0;
+                switch_count.retain(|_| {
+                    j += 1;
+                    !beyond[j - 1]
+                });
+                if forced {
+                    ws.system = Some(sys);
+                    prev_sig = None;
+                    continue;
+                }
+            }
+            report.floor_stop = worst > 1.0;
+            report.residual = r_u;
+            report.residual_sum = ws.r[..n].iter().map(|v| v.abs()).sum();
+            // the lever arm of the moments: √2 · max |x| over the nodes, bounded by 2 max |X| + |u|
+            let lever = {
+                let xmax = data
+                    .bodies
+                    .bodies()
+                    .iter()
+                    .flat_map(|b| b.data().mesh.nodes().iter())
+                    .fold(0.0f64, |m, x| m.max(x[0].abs()).max(x[1].abs()));
+                let umax = ws
+                    .u1
+                    .iter()
+                    .chain(data.u0.iter())
+                    .fold(0.0f64, |m, v| m.max(v.abs()));
+                2.0 * (xmax + umax)
+            };
+            report.residual_moment = lever * report.residual_sum;
+            report.work_scale = ws.scale[..n]
+                .iter()
+                .zip(d.iter())
+                .map(|(a, b)| a * b.abs())
+                .sum();
+            report.force_scale = ws.scale[..n].iter().sum();
+            report.moment_scale = lever * report.force_scale;
+            report.newton_bound = d.iter().map(|x| x.abs()).sum::<f64>() * r_u + bound_c;
+            for cand in candidates.iter_mut() {
+                let x1 = cand.positions(&ws.u1);
+                let (g1, tau1) = cand.gap_and_tangential(&ws.forms, &x1);
+                cand.g1 = g1;
+                cand.tau1 = tau1;
+            }
+            ws.system = Some(sys);
+            return Ok(report);
+        }
+        history.push(sig.clone());
+        prev_sig = Some(sig);
+        // the Newton step
+        let mut delta: Vec<f64> = ws.r.iter().map(|v| -v).collect();
+        let solved = sys.solve(&mut delta);
+        ws.system = Some(sys);
+        solved?;
+        // cut back only where a body would be inverted
+        let mut step = 1.0;
+        for _ in 0..=params.max_backtracks {
+            for i in 0..n {
+                ws.trial[i] = d[i] + step * delta[i];
+            }
+            let ok = data.bodies.bodies().iter().enumerate().all(|(b, body)| {
+                body.is_linear() || {
+                    let rg = data.bodies.range(b);
+                    let u1: Vec<f64> = data.u0[rg.clone()]
+                        .iter()
+                        .zip(&ws.trial[rg])
+                        .map(|(a, b)| a + b)
+                        .collect();
+                    body.stored_energy(&u1).is_finite()
+                }
+            });
+            if ok {
+                break;
+            }
+            step *= 0.5;
+        }
+        d.copy_from_slice(&ws.trial[..n]);
+        for cand in candidates.iter_mut() {
+            if let Some(ln) = cand.ln {
+                cand.lambda_n += step * delta[ln];
+            }
+            if let Some(lt) = cand.lt {
+                cand.lambda_t += step * delta[lt];
+            }
+        }
+        last = worst;
+        // segment switching (a node past a segment's end moves to the neighbour there)
+        for i in 0..n {
+            ws.u1[i] = data.u0[i] + d[i];
+        }
+        for (ci, cand) in candidates.iter_mut().enumerate() {
+            let (Some(seg), MasterRef::Surface(master)) = (cand.segment, data.masters[cand.pair])
+            else {
+                continue;
+            };
+            let xi = cand.xi(&ws.forms, &cand.positions(&ws.u1));
+            let target = if xi > 1.0 + SWITCH_TOLERANCE {
+                master.next[seg]
+            } else if xi < -SWITCH_TOLERANCE {
+                master.previous[seg]
+            } else {
+                None
+            };
+            if let Some(next) = target {
+                if switch_count[ci] < max_switches {
+                    switch_count[ci] += 1;
+                    report.switches += 1;
+                    pair_with_segment(
+                        cand,
+                        data.bodies,
+                        slave_bodies[cand.pair],
+                        master,
+                        next,
+                        data.u0,
+                        &ws.forms,
+                    );
+                    cand.switched = true;
+                    cand.was_active = false;
+                    cand.tangent = Tangent::Free;
+                }
+            }
+        }
+    }
+    // out of iterations: a cycle if a state repeated
+    let period = history
+        .iter()
+        .rev()
+        .skip(1)
+        .position(|s| Some(s) == history.last());
+    if let Some(p) = period {
+        let last_sig = &history[history.len() - 1];
+        let cycle = &history[history.len() - 2 - p..];
+        let changing: Vec<String> = candidates
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| {
+                i < &last_sig.len() && cycle.iter().any(|s| s.get(*i) != last_sig.get(*i))
+            })
+            .take(6)
+            .map(|(_, c)| match c.segment {
+                Some(s) => format!("pair {} slave node {} on segment {s}", c.pair, c.slave),
+                None => format!("pair {} slave node {} on the foundation", c.pair, c.slave),
+            })
+            .collect();
+        if !changing.is_empty() {
+            return Err(SolveError::ActiveSetCycle {
+                step: data.at.step,
+                time: data.at.time,
+                iterations: params.max_iterations,
+                residual: last,
+                period: p + 1,
+                constraints: changing.join(", "),
+            });
+        }
+    }
+    Err(SolveError::NewtonNotConverged {
+        step: data.at.step,
+        time: data.at.time,
+        iterations: params.max_iterations,
+        residual: last * params.tolerance,
+        tolerance: params.tolerance,
+    })
+}
