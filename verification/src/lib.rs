@@ -6,7 +6,7 @@
 //!
 //! Imports run one way: `bin → suite → registry → families → core → {stats, plot, vtk, exact,
 //! manufactured} → contactlab`. The [`core`] knows no model family; each family ([`rod`], [`plane`], [`dynamic`],
-//! [`moving`]) has the same shape (see [`family`]) and imports no other family.
+//! [`moving`], [`multibody`]) has the same shape (see [`family`]) and imports no other family.
 
 // Numerical kernels index several arrays in lockstep (u_i, w_i, g_i, z_i; rows and columns):
 // index loops read as the formulas they implement.
@@ -18,6 +18,7 @@ pub mod exact;
 pub mod family;
 pub mod manufactured;
 pub mod moving;
+pub mod multibody;
 pub mod plane;
 pub mod plot;
 pub mod registry;

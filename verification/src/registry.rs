@@ -13,11 +13,12 @@ use crate::core::report::case_report::CaseReport;
 use crate::family::Family;
 
 /// Every family of the suite.
-pub const FAMILIES: [&dyn Family; 4] = [
+pub const FAMILIES: [&dyn Family; 5] = [
     &crate::rod::Rod,
     &crate::plane::Plane,
     &crate::dynamic::Dynamic,
     &crate::moving::Moving,
+    &crate::multibody::Multibody,
 ];
 
 /// Every case kind, in family order, then the fuzz campaign's.

@@ -1,0 +1,8 @@
+//! The case kinds of the multibody family, one file (or folder) each.
+
+pub mod bars;
+pub mod extremes;
+pub mod friction;
+pub mod impact;
+pub mod patch;
+pub mod performance;

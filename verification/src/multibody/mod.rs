@@ -1,0 +1,84 @@
+//! Bodies against bodies: node-to-segment contact of plane-strain bodies with Lagrange
+//! multipliers, friction and the energy–momentum scheme (the energy–momentum paper, "EM";
+//! docs/multibody.md), against exact wave solutions, the contact patch test, a closed-form slide
+//! and the conservation laws.
+//!
+//! | kind | file | what it establishes |
+//! |---|---|---|
+//! | `multibody_bars` | [`cases::bars`] | two bars meeting head-on and a short bar striking a long one, against their exact wave solutions: contact duration, stress, rebound, rates in h and k |
+//! | `multibody_patch` | [`cases::patch`] | the contact patch test (Taylor & Papadopoulos): two-pass passes to round-off, single-pass's failure measured |
+//! | `multibody_friction` | [`cases::friction`] | a block sliding on a larger block: deceleration set by μ and the load, momentum exact, dissipation = μ N × slip, the stick time's rate in k |
+//! | `multibody_impact` | [`cases::impact`] | two rings in oblique impact: EM's momenta and energy at round-off, the midpoint rule's energy error and blow-up, GCI of rebound and duration, work–precision |
+//! | `multibody_extremes` | [`cases::extremes`] | steps of several contact durations, speeds over three decades, grazing impact, a node sliding off the master's end, penalty → ∞ against multipliers |
+//! | `multibody_performance` | [`cases::performance`] | the cost of a two-body step against a one-body step of the same size, the search's share |
+//!
+//! [`study`] holds what every kind shares: building bodies from a case's numbers, running a
+//! problem with its step records, the audit's gates and plots; [`errors`] the measured
+//! functionals (centre-of-mass velocities, contact intervals).
+
+pub mod cases;
+pub mod errors;
+pub mod scene;
+pub mod study;
+
+use std::path::Path;
+
+use contactlab::scene::Scene;
+
+use crate::core::case::Case;
+use crate::core::context::RunContext;
+use crate::core::format::CaseError;
+use crate::core::report::case_report::CaseReport;
+use crate::family::Family;
+
+/// The multibody family.
+pub struct Multibody;
+
+impl Family for Multibody {
+    fn name(&self) -> &'static str {
+        "multibody"
+    }
+
+    fn kinds(&self) -> &'static [&'static str] {
+        &[
+            "multibody_bars",
+            "multibody_patch",
+            "multibody_friction",
+            "multibody_impact",
+            "multibody_extremes",
+            "multibody_performance",
+        ]
+    }
+
+    fn check(&self, case: &Case) -> Result<(), CaseError> {
+        match case.header.kind.as_str() {
+            "multibody_bars" => cases::bars::check(case),
+            "multibody_patch" => cases::patch::check(case),
+            "multibody_friction" => cases::friction::check(case),
+            "multibody_impact" => cases::impact::check(case),
+            "multibody_extremes" => cases::extremes::check(case),
+            "multibody_performance" => cases::performance::check(case),
+            _ => Err(case.unknown_kind(self.kinds())),
+        }
+    }
+
+    fn run(&self, case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+        match case.header.kind.as_str() {
+            "multibody_bars" => cases::bars::run(case, ctx, report),
+            "multibody_patch" => cases::patch::run(case, ctx, report),
+            "multibody_friction" => cases::friction::run(case, ctx, report),
+            "multibody_impact" => cases::impact::run(case, ctx, report),
+            "multibody_extremes" => cases::extremes::run(case, ctx, report),
+            "multibody_performance" => cases::performance::run(case, ctx, report),
+            _ => Err(case.unknown_kind(self.kinds()).to_string()),
+        }
+    }
+
+    fn models(&self) -> &'static [&'static str] {
+        &["multibody"]
+    }
+
+    fn write_scene(&self, scene: &Scene, source: &str, out: &Path) -> Result<String, String> {
+        scene::write_scene(scene, source, out)
+    }
+}
