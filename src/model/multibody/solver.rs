@@ -629,18 +629,6 @@ impl MultibodySolver {
                 let check_start = Instant::now();
                 let u1: Vec<f64> = u.iter().zip(&d).map(|(a, b)| a + b).collect();
                 let missed = self.missed(&u1, &candidates, 1e-9 * size);
-                if std::env::var("MB_DEBUG").is_ok() {
-                    eprintln!(
-                        "step {step}: {} candidates, missed {missed}, report {report:?}",
-                        candidates.len()
-                    );
-                    for c in &candidates {
-                        eprintln!(
-                            "  slave {} seg {:?} g0 {:e} g1 {:e} lam {:e} active {}",
-                            c.slave, c.segment, c.g0, c.g1, c.lambda_n, c.active
-                        );
-                    }
-                }
                 stats.search_seconds += check_start.elapsed().as_secs_f64();
                 if missed == 0 {
                     break (candidates, report);

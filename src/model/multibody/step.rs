@@ -23,7 +23,7 @@ use crate::model::multibody::constraint::{Candidate, PairLaw, RowScale, Tangent}
 use crate::model::multibody::invariants::{Evaluation, InvariantForms, Local6};
 use crate::model::multibody::scheme::MultibodyScheme;
 use crate::model::multibody::surface::ContactSurface;
-use crate::model::multibody::system::StepSystem;
+use crate::model::multibody::system::{PatchDofs, StepSystem};
 
 /// How far past a segment's end (in ξ) a projection goes before the node switches segment.
 pub const SWITCH_TOLERANCE: f64 = 1e-9;
@@ -296,6 +296,32 @@ pub fn pair_with_segment(
     c.tau0 = tau0;
 }
 
+/// The coordinates of a candidate's patch: its slave node, then the nodes of its master segment
+/// and of the segments before and after it (the foundation: the slave node only).
+fn patch_dofs(c: &Candidate, data: &StepData<'_>, slave_body: usize) -> PatchDofs {
+    let b = data.bodies;
+    let mut patch = [None; 10];
+    patch[0] = b.dof(slave_body, c.slave, 0);
+    patch[1] = b.dof(slave_body, c.slave, 1);
+    let (Some(seg), MasterRef::Surface(m)) = (c.segment, data.masters[c.pair]) else {
+        return patch;
+    };
+    let mut nodes = Vec::with_capacity(4);
+    if let Some(p) = m.previous[seg] {
+        nodes.push(m.segments[p][0]);
+    }
+    nodes.extend_from_slice(&m.segments[seg]);
+    if let Some(n) = m.next[seg] {
+        nodes.push(m.segments[n][1]);
+    }
+    nodes.dedup();
+    for (i, &node) in nodes.iter().take(4).enumerate() {
+        patch[2 + 2 * i] = b.dof(m.body, node, 0);
+        patch[3 + 2 * i] = b.dof(m.body, node, 1);
+    }
+    patch
+}
+
 /// Solves one step: on return `d` holds the increment and the candidates their multipliers,
 /// states and g₁, τ₁. `slave_bodies[pair]` is the body of each pair's slave surface.
 pub fn solve_step(
@@ -311,6 +337,7 @@ pub fn solve_step(
     let at = data.kind.evaluation();
     let mut report = StepReport::default();
     let mut switch_count = vec![0usize; candidates.len()];
+    let mut visited: Vec<Vec<usize>> = vec![Vec::new(); candidates.len()];
     let mut prev_sig: Option<Vec<(bool, i8, usize)>> = None;
     let mut history: Vec<Vec<(bool, i8, usize)>> = Vec::new();
     let mut residuals: Vec<f64> = Vec::new();
@@ -330,7 +357,11 @@ pub fn solve_step(
             None => true,
         };
         if relayout {
-            let sys = StepSystem::new(data.bodies, candidates, data.laws)?;
+            let patches: Vec<PatchDofs> = candidates
+                .iter()
+                .map(|c| patch_dofs(c, data, slave_bodies[c.pair]))
+                .collect();
+            let sys = StepSystem::new(data.bodies, candidates, &patches, data.laws)?;
             report.analyses += 1;
             ws.system = Some(sys);
         } else if let Some(s) = &ws.system {
@@ -401,7 +432,7 @@ pub fn solve_step(
                 worst = worst.max(out.r_t.abs() / tol_c);
                 bound_c += cand.lambda_t.abs() * out.r_t.abs() / c;
             }
-            sys.add_candidate(ci, &out.jac);
+            sys.add_candidate(ci, &cand.dofs, &out.jac);
         }
         let s_u = ws
             .scale
@@ -461,6 +492,11 @@ pub fn solve_step(
                 switch_count.retain(|_| {
                     j += 1;
                     !beyond[j - 1]
+                });
+                let mut v = 0;
+                visited.retain(|_| {
+                    v += 1;
+                    !beyond[v - 1]
                 });
                 if forced {
                     ws.system = Some(sys);
@@ -561,7 +597,25 @@ pub fn solve_step(
                 None
             };
             if let Some(next) = target {
-                if switch_count[ci] < max_switches {
+                // only onto a segment the node projects onto: a node in the dead zone of a convex
+                // master vertex (beyond both segments' ends) stays on the extended segment
+                let [n1, n2] = master.segments[next];
+                let xs = data
+                    .bodies
+                    .position(slave_bodies[cand.pair], cand.slave, &ws.u1);
+                let (x1, x2) = (
+                    data.bodies.position(master.body, n1, &ws.u1),
+                    data.bodies.position(master.body, n2, &ws.u1),
+                );
+                let onto = crate::model::multibody::search::project(xs, x1, x2, next).xi;
+                let projects = (-SWITCH_TOLERANCE..=1.0 + SWITCH_TOLERANCE).contains(&onto);
+                // and never back to a segment it left in this step: a node at a convex master
+                // vertex, held on one segment's line, lands just past its end where the next
+                // segment claims it, and back (the vertex's non-smoothness); it stays on the
+                // second segment, within the distance the two lines differ there
+                let revisit = visited[ci].contains(&next);
+                if projects && !revisit && switch_count[ci] < max_switches {
+                    visited[ci].push(seg);
                     switch_count[ci] += 1;
                     report.switches += 1;
                     pair_with_segment(

@@ -7,8 +7,10 @@
 //! its multipliers (an 8 × 8 local matrix, not symmetric: the force direction of the midpoint and
 //! energy–momentum schemes is not the constraint's gradient at t_{n+1}). The matrix J = S + W is
 //! stored as its symmetric and skew parts on the upper triangle of the pattern ([`SparseLu`]).
-//! The pattern depends only on which nodes the candidates couple: it is analyzed again only when
-//! a candidate is added, dropped or switches segment.
+//! The pattern is laid out per candidate on a *patch*: its slave node and the nodes of its master
+//! segment and of the two neighbouring segments, so that a node switching to the next segment
+//! (which happens within a step as it slides) keeps the layout; the pattern is analyzed again only
+//! when a candidate is added or dropped or leaves its patch.
 
 use crate::error::SolveError;
 use crate::fem::sparse::SymmetricPattern;
@@ -19,17 +21,25 @@ use crate::solve::sparse_lu::SparseLu;
 
 const NONE: usize = usize::MAX;
 
+/// The unknowns of a candidate's patch: 10 coordinates (the slave node and up to four master
+/// nodes), λ_N and λ_T.
+pub const PATCH: usize = 12;
+
+/// The coordinates' dofs of a patch (the slave node first; `None`: held or absent).
+pub type PatchDofs = [Option<usize>; 10];
+
 /// The layout and the factorization of the step system.
 pub struct StepSystem {
     n_u: usize,
     pattern: SymmetricPattern,
     /// Per body: the system slot of each slot of the body's pattern.
     body_slots: Vec<Vec<usize>>,
-    /// Per candidate: its 8 global unknowns and the slot of each local entry (p, q).
-    unknowns: Vec<[Option<usize>; 8]>,
+    /// Per candidate: its patch's unknowns (10 coordinates, λ_N, λ_T) and the slot of each entry
+    /// (p, q) of the patch.
+    unknowns: Vec<[Option<usize>; PATCH]>,
     /// The pair of each candidate (its law decides its multipliers).
     pairs: Vec<usize>,
-    slots: Vec<[usize; 64]>,
+    slots: Vec<[usize; PATCH * PATCH]>,
     lu: SparseLu,
     sym: Vec<f64>,
     skew: Vec<f64>,
@@ -48,20 +58,13 @@ impl std::fmt::Debug for StepSystem {
     }
 }
 
-/// The 8 global unknowns of a candidate (its coordinates' dofs, λ_N, λ_T).
-fn unknowns_of(c: &Candidate) -> [Option<usize>; 8] {
-    let mut u = [None; 8];
-    u[..6].copy_from_slice(&c.dofs);
-    u[6] = c.ln;
-    u[7] = c.lt;
-    u
-}
-
 impl StepSystem {
-    /// Numbers the candidates' multipliers after the bodies' dofs and analyzes the pattern.
+    /// Numbers the candidates' multipliers after the bodies' dofs and analyzes the pattern of
+    /// their patches (`patches[i]`: candidate i's coordinates, which contain its current dofs).
     pub fn new(
         bodies: &BodySet,
         candidates: &mut [Candidate],
+        patches: &[PatchDofs],
         laws: &[PairLaw],
     ) -> Result<Self, SolveError> {
         let n_u = bodies.dofs();
@@ -88,7 +91,17 @@ impl StepSystem {
                 }
             }
         }
-        let unknowns: Vec<[Option<usize>; 8]> = candidates.iter().map(unknowns_of).collect();
+        let unknowns: Vec<[Option<usize>; PATCH]> = candidates
+            .iter()
+            .zip(patches)
+            .map(|(c, patch)| {
+                let mut u = [None; PATCH];
+                u[..10].copy_from_slice(patch);
+                u[10] = c.ln;
+                u[11] = c.lt;
+                u
+            })
+            .collect();
         for u in &unknowns {
             for p in u.iter().flatten() {
                 for q in u.iter().flatten() {
@@ -116,11 +129,11 @@ impl StepSystem {
         let slots = unknowns
             .iter()
             .map(|u| {
-                let mut s = [NONE; 64];
-                for p in 0..8 {
-                    for q in 0..8 {
+                let mut s = [NONE; PATCH * PATCH];
+                for p in 0..PATCH {
+                    for q in 0..PATCH {
                         if let (Some(gp), Some(gq)) = (u[p], u[q]) {
-                            s[p * 8 + q] = slot(gp, gq);
+                            s[p * PATCH + q] = slot(gp, gq);
                         }
                     }
                 }
@@ -144,8 +157,9 @@ impl StepSystem {
         })
     }
 
-    /// Whether the layout serves these candidates: the same coordinates' dofs and the same pairs,
-    /// in the same order (the multipliers are numbered by [`Self::number`]).
+    /// Whether the layout serves these candidates: the same pairs in the same order, and every
+    /// candidate's current coordinates within its patch (the multipliers are numbered by
+    /// [`Self::number`]).
     pub fn serves(&self, candidates: &[Candidate]) -> bool {
         self.unknowns.len() == candidates.len()
             && self
@@ -153,14 +167,16 @@ impl StepSystem {
                 .iter()
                 .zip(&self.pairs)
                 .zip(candidates)
-                .all(|((u, p), c)| u[..6] == c.dofs && *p == c.pair)
+                .all(|((u, p), c)| {
+                    *p == c.pair && c.dofs.iter().flatten().all(|d| u[..10].contains(&Some(*d)))
+                })
     }
 
     /// Gives `candidates` the multipliers' numbering of the layout (after [`Self::serves`]).
     pub fn number(&self, candidates: &mut [Candidate]) {
         for (u, c) in self.unknowns.iter().zip(candidates) {
-            c.ln = u[6];
-            c.lt = u[7];
+            c.ln = u[10];
+            c.lt = u[11];
         }
     }
 
@@ -198,19 +214,31 @@ impl StepSystem {
         }
     }
 
-    /// Adds candidate `c`'s local matrix (J_pq: row p, column q).
-    pub fn add_candidate(&mut self, c: usize, jac: &Local88) {
+    /// Adds candidate `c`'s local matrix (J_pq: row p, column q; p, q index its six coordinates
+    /// `dofs`, λ_N and λ_T).
+    pub fn add_candidate(&mut self, c: usize, dofs: &[Option<usize>; 6], jac: &Local88) {
         let u = &self.unknowns[c];
+        // the patch position of each local unknown
+        let mut at = [None; 8];
+        for (p, d) in dofs.iter().enumerate() {
+            if let Some(d) = d {
+                at[p] = u[..10].iter().position(|x| *x == Some(*d));
+            }
+        }
+        at[6] = u[10].map(|_| 10);
+        at[7] = u[11].map(|_| 11);
         let slots = &self.slots[c];
         for p in 0..8 {
-            let Some(gp) = u[p] else { continue };
+            let Some(ip) = at[p] else { continue };
+            let Some(gp) = u[ip] else { continue };
             for q in 0..8 {
-                let Some(gq) = u[q] else { continue };
+                let Some(iq) = at[q] else { continue };
+                let Some(gq) = u[iq] else { continue };
                 let v = jac[(p, q)];
                 if v == 0.0 {
                     continue;
                 }
-                let s = slots[p * 8 + q];
+                let s = slots[ip * PATCH + iq];
                 if gp == gq {
                     self.sym[s] += v;
                 } else if gp < gq {
