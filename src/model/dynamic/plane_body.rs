@@ -208,6 +208,44 @@ impl PlaneBody {
         self.materials.index(e).checked_sub(1)
     }
 
+    /// Whether every element of u is admissible for its law (det F > 0 for neo-Hooke): the check
+    /// of a Newton update, without evaluating the energy.
+    pub fn admissible(&self, u: &[f64]) -> bool {
+        (0..self.elements.len()).all(|e| self.materials.law(e).admissible(&self.deformation_gradient(u, e)))
+    }
+
+    /// Adds `scale` · ∂F^algo/∂u1 (u0, u1) split into its symmetric part (into `sym`) and its skew
+    /// part (upper triangle, into `skew`) in one pass over the elements: the sum of
+    /// [`ElasticBody::add_discrete_gradient_tangent`] and [`ElasticBody::add_discrete_gradient_skew`]
+    /// with the law's discrete-gradient tangent evaluated once per element.
+    pub fn add_discrete_gradient_tangent_split(
+        &self,
+        u0: &[f64],
+        u1: &[f64],
+        scale: f64,
+        sym: &mut [f64],
+        skew: &mut [f64],
+    ) {
+        for e in 0..self.elements.len() {
+            let f0 = self.deformation_gradient(u0, e);
+            let f1 = self.deformation_gradient(u1, e);
+            let law = self.materials.law(e);
+            let k = self.element_matrix(e, scale, false, |df| {
+                law.discrete_gradient_tangent(&f0, &f1, df)
+            });
+            let mut s = [0.0; 36];
+            let mut w = [0.0; 36];
+            for p in 0..6 {
+                for q in 0..6 {
+                    s[p * 6 + q] = 0.5 * (k[p * 6 + q] + k[q * 6 + p]);
+                    w[p * 6 + q] = 0.5 * (k[p * 6 + q] - k[q * 6 + p]);
+                }
+            }
+            self.ops.pattern.add_element(sym, e, &s);
+            self.ops.pattern.add_element(skew, e, &w);
+        }
+    }
+
     /// The element geometries.
     pub fn elements(&self) -> &[P1Triangle] {
         &self.elements

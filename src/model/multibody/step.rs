@@ -222,10 +222,9 @@ fn assemble_bodies(data: &StepData<'_>, d: &[f64], ws: &mut StepWorkspace, matri
                 }
                 match scheme {
                     Some(MultibodyScheme::EnergyMomentum) => {
-                        body.add_discrete_gradient_tangent(u0, u1, 1.0, sym);
                         let skew = &mut ws.skew[bi];
                         skew.iter_mut().for_each(|v| *v = 0.0);
-                        body.add_discrete_gradient_skew(u0, u1, 1.0, skew);
+                        body.add_discrete_gradient_tangent_split(u0, u1, 1.0, sym, skew);
                     }
                     Some(MultibodyScheme::Midpoint) => body.add_tangent(um, 0.5, sym),
                     _ => body.add_tangent(u1, 1.0, sym),
@@ -553,16 +552,11 @@ pub fn solve_step(
             for i in 0..n {
                 ws.trial[i] = d[i] + step * delta[i];
             }
+            for i in 0..n {
+                ws.um[i] = data.u0[i] + ws.trial[i];
+            }
             let ok = data.bodies.bodies().iter().enumerate().all(|(b, body)| {
-                body.is_linear() || {
-                    let rg = data.bodies.range(b);
-                    let u1: Vec<f64> = data.u0[rg.clone()]
-                        .iter()
-                        .zip(&ws.trial[rg])
-                        .map(|(a, b)| a + b)
-                        .collect();
-                    body.stored_energy(&u1).is_finite()
-                }
+                body.is_linear() || body.admissible(&ws.um[data.bodies.range(b)])
             });
             if ok {
                 break;
