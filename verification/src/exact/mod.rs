@@ -5,6 +5,8 @@
 //! - `rod_constant_data`: the family of exact solutions of problem T1D with constant data
 //!   (derived here; the paper's two, (4.6) and (4.7), are members).
 //! - `rod_paper`: the paper's (4.6) and (4.7) written out literally, to check the family against.
+//! - `bar_impact`: two free bars meeting (head-on at ±v; a striker hitting a longer target at rest):
+//!   d'Alembert's solution with the images at the free ends (derived there; docs/multibody.md).
 //! - `signorini_bar`: the exact 1D benchmarks of dynamic contact (periodic Signorini bar, free bar
 //!   hitting a rigid wall; docs/dynamic.md §5).
 //! - `coulomb_friction`, `sliding_block`, `loaded_block`: the friction benchmarks (BDS (1.8),
@@ -19,6 +21,7 @@
 //!   at the inner edge or at the centre (Hetzler 2009, §4.1; Leissa, Vibration of Plates, ch. 2):
 //!   the Bessel-function characteristic determinants, derived there.
 
+pub mod bar_impact;
 pub mod bessel;
 pub mod bimaterial_strip;
 pub mod coulomb_friction;
