@@ -20,7 +20,9 @@
 //! Newton part — the step equation is solved to a residual R, whose work d·R and impulse k ΣR the
 //! identities miss: ν_n = ‖d‖₁ ‖R_u‖_∞ + Σ |λ| |C| / c, k ‖R_u‖₁ and k Σ |x| |R_u| — and a
 //! round-off part, a few ε times the magnitudes the step rounds: s_n = the energies' and works'
-//! magnitudes + Σ_i s_i |d_i| (s_i the magnitude of row i's terms); for the momenta k Σ_i s_i
+//! magnitudes + Σ_i s_i |d_i| (s_i the magnitude of row i's terms) + 2 Σ |λ| |x| (a gap or a
+//! tangential coordinate is computed from coordinates of size |x|, so it carries a round-off
+//! ε |x| whatever its value, and a multiplier's work λ ε |x|); for the momenta k Σ_i s_i
 //! and k Σ_i |x| s_i, and the sums |(M v)_I| that P and J are computed from. The drifts since
 //! t = 0 are gated against C ε Σ_{j≤n} s_j + Σ_{j≤n} ν_j with C = [`ROUND_OFF_CONSTANT`].
 

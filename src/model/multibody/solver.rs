@@ -88,6 +88,8 @@ pub struct MultibodyStats {
     pub switches: usize,
     pub releases: usize,
     pub floor_stops: usize,
+    /// Halvings of the Newton line search.
+    pub backtracks: usize,
     /// Steps redone with a larger search margin because a node outside the candidates
     /// penetrated a master.
     pub search_retries: usize,
@@ -743,6 +745,7 @@ impl MultibodySolver {
         stats.switches += report.switches;
         stats.releases += report.releases;
         stats.floor_stops += usize::from(report.floor_stop);
+        stats.backtracks += report.backtracks;
     }
 
     /// The energies and momenta of a state, and the candidates' counts and forces.
@@ -820,7 +823,11 @@ impl MultibodySolver {
             if self.problem.pairs[c.pair].law.has_normal_multiplier() {
                 let w = c.lambda_n * (c.g1 - c.g0);
                 rec.normal_work += w;
-                scale += (c.lambda_n * c.g1).abs() + (c.lambda_n * c.g0).abs();
+                // g is computed from coordinates of size |x| (π₂ = b × a): its round-off is ε |x|,
+                // whatever the gap, so λ's work carries λ ε |x| (at low speeds, more than the
+                // energy's own round-off)
+                let size = c.x0.amax().max(c.reference.amax());
+                scale += (c.lambda_n * c.g1).abs() + (c.lambda_n * c.g0).abs() + 2.0 * c.lambda_n.abs() * size;
                 if c.active && c.was_active && !c.switched {
                     rec.holding_gap_work += c.lambda_n.abs() * (c.g0.abs() + c.g1.abs());
                 }
@@ -841,6 +848,7 @@ impl MultibodySolver {
                 let w = c.lambda_t * (c.tau1 - c.tau0);
                 rec.friction_work += w;
                 scale += (c.lambda_t * c.tau1).abs() + (c.lambda_t * c.tau0).abs();
+                scale += 2.0 * c.lambda_t.abs() * c.x0.amax().max(c.reference.amax());
             }
         }
         rec.released += report.releases;

@@ -72,6 +72,8 @@ pub struct StepReport {
     pub releases: usize,
     pub analyses: usize,
     pub floor_stop: bool,
+    /// Halvings of the line search.
+    pub backtracks: usize,
     /// ‖R_u‖_∞ at convergence and the bound ‖d‖₁ ‖R_u‖_∞ + Σ |λ| |C| / c.
     pub residual: f64,
     pub newton_bound: f64,
@@ -84,6 +86,19 @@ pub struct StepReport {
     pub work_scale: f64,
     pub force_scale: f64,
     pub moment_scale: f64,
+}
+
+/// The last Newton update, for the line search: the point it started from, the direction (already
+/// cut back for admissibility), and the merit ‖R‖₂ there.
+struct LineState {
+    d: Vec<f64>,
+    delta: Vec<f64>,
+    lambda: Vec<(f64, f64)>,
+    dlambda: Vec<(f64, f64)>,
+    merit: f64,
+    /// The fraction of the direction taken, and how often it was halved.
+    step: f64,
+    halvings: usize,
 }
 
 /// Buffers of the step, allocated once per run.
@@ -342,6 +357,22 @@ pub fn solve_step(
     let mut residuals: Vec<f64> = Vec::new();
     let mut unchanged = 0usize;
     let mut last = f64::INFINITY;
+    // the monotone line search on ‖R‖₂: the point and the Newton direction of the last update
+    let mut line: Option<LineState> = None;
+    // the predictor (k v_n for a dynamic step) cut back towards u_n while it would invert a body:
+    // at a large step the velocities of a vibrating body carry elements through det F = 0
+    for _ in 0..=params.max_backtracks {
+        for i in 0..n {
+            ws.um[i] = data.u0[i] + d[i];
+        }
+        let ok = data.bodies.bodies().iter().enumerate().all(|(b, body)| {
+            body.is_linear() || body.admissible(&ws.um[data.bodies.range(b)])
+        });
+        if ok {
+            break;
+        }
+        d.iter_mut().for_each(|x| *x *= 0.5);
+    }
     for iteration in 1..=params.max_iterations {
         crate::run_control::check(|| {
             format!(
@@ -452,6 +483,25 @@ pub fn solve_step(
             });
         }
         worst = worst.max(r_u / (params.tolerance * s_u));
+        // the line search: a full Newton step that did not decrease ‖R‖₂ is halved (the
+        // residual is compared only between iterations without a switch: a switch changes it)
+        let merit = ws.r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if let Some(l) = &mut line {
+            if merit > (1.0 - 1e-4 * l.step) * l.merit && l.halvings < params.max_backtracks {
+                l.step *= 0.5;
+                l.halvings += 1;
+                report.backtracks += 1;
+                for i in 0..n {
+                    d[i] = l.d[i] + l.step * l.delta[i];
+                }
+                for (cand, (lam, dlam)) in candidates.iter_mut().zip(l.lambda.iter().zip(&l.dlambda)) {
+                    cand.lambda_n = lam.0 + l.step * dlam.0;
+                    cand.lambda_t = lam.1 + l.step * dlam.1;
+                }
+                ws.system = Some(sys);
+                continue;
+            }
+        }
         let sig = signature(candidates);
         let same = prev_sig.as_ref() == Some(&sig);
         unchanged = if same { unchanged + 1 } else { 0 };
@@ -500,6 +550,7 @@ pub fn solve_step(
                 if forced {
                     ws.system = Some(sys);
                     prev_sig = None;
+                    line = None;
                     continue;
                 }
             }
@@ -563,14 +614,27 @@ pub fn solve_step(
             }
             step *= 0.5;
         }
+        let mut state = LineState {
+            d: d.to_vec(),
+            delta: delta[..n].iter().map(|v| step * v).collect(),
+            lambda: candidates.iter().map(|c| (c.lambda_n, c.lambda_t)).collect(),
+            dlambda: candidates
+                .iter()
+                .map(|c| {
+                    (
+                        c.ln.map_or(0.0, |i| step * delta[i]),
+                        c.lt.map_or(0.0, |i| step * delta[i]),
+                    )
+                })
+                .collect(),
+            merit,
+            step: 1.0,
+            halvings: 0,
+        };
         d.copy_from_slice(&ws.trial[..n]);
-        for cand in candidates.iter_mut() {
-            if let Some(ln) = cand.ln {
-                cand.lambda_n += step * delta[ln];
-            }
-            if let Some(lt) = cand.lt {
-                cand.lambda_t += step * delta[lt];
-            }
+        for (cand, dl) in candidates.iter_mut().zip(&state.dlambda) {
+            cand.lambda_n += dl.0;
+            cand.lambda_t += dl.1;
         }
         last = worst;
         // segment switching (a node past a segment's end moves to the neighbour there)
@@ -624,9 +688,12 @@ pub fn solve_step(
                     cand.switched = true;
                     cand.was_active = false;
                     cand.tangent = Tangent::Free;
+                    state.halvings = usize::MAX;
                 }
             }
         }
+        // no line search across a switch (the residual changed its definition)
+        line = (state.halvings == 0).then_some(state);
     }
     // out of iterations: a cycle if a state repeated
     let period = history

@@ -182,7 +182,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         large_step(&c, l, &find, report);
     }
     let extrapolated = match &c.gci {
-        Some(g) => gci(&c, g, &find, report, ctx)?,
+        Some(g) => gci(g, &find, report, ctx)?,
         None => None,
     };
     if let (Some(w), Some(reference)) = (&c.work_precision, extrapolated) {
@@ -300,7 +300,6 @@ fn quantity(o: &Outcome, q: usize) -> f64 {
 
 /// The GCI study; returns the extrapolated rebound of ring 0 (the work–precision reference).
 fn gci<'a>(
-    c: &ImpactCase,
     g: &format::GciSpec,
     find: &dyn Fn(&Job) -> &'a Result<Outcome, String>,
     report: &mut CaseReport,

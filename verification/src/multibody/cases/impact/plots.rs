@@ -2,7 +2,6 @@
 //! the contact force and the rings' centre velocities against time, and the work–precision
 //! diagram.
 
-use contactlab::model::dynamic::body::ElasticBody;
 use contactlab::model::multibody::solver::MultibodySnapshot;
 use contactlab::model::multibody::bodies::BodySet;
 
