@@ -464,7 +464,13 @@ fn rings_explore() {
             match solver.solve() {
                 Ok(sol) => {
                     let s = sol.summary();
-                    let (t0, t1) = sol.records.iter().filter(|r| r.active > 0).fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(r.time), b.max(r.time)));
+                    let (t0, t1) = sol
+                        .records
+                        .iter()
+                        .filter(|r| r.active > 0)
+                        .fold((f64::INFINITY, 0.0f64), |(a, b), r| {
+                            (a.min(r.time), b.max(r.time))
+                        });
                     println!("mu {mu} {scheme:?}: drift {:.3e} activation {:.3e} unchanged_rel {:.3e} P {:.2e} J {:.2e} contact [{t0:.4}, {t1:.4}] its {} E_end {:.6}", s.energy_drift, s.activation_relative, s.unchanged_relative, s.momentum_ratio, s.angular_ratio, sol.stats.newton_iterations, sol.records.last().unwrap().energy);
                 }
                 Err(e) => println!("mu {mu} {scheme:?}: {e}"),

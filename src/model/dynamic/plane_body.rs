@@ -211,7 +211,11 @@ impl PlaneBody {
     /// Whether every element of u is admissible for its law (det F > 0 for neo-Hooke): the check
     /// of a Newton update, without evaluating the energy.
     pub fn admissible(&self, u: &[f64]) -> bool {
-        (0..self.elements.len()).all(|e| self.materials.law(e).admissible(&self.deformation_gradient(u, e)))
+        (0..self.elements.len()).all(|e| {
+            self.materials
+                .law(e)
+                .admissible(&self.deformation_gradient(u, e))
+        })
     }
 
     /// Adds `scale` · ∂F^algo/∂u1 (u0, u1) split into its symmetric part (into `sym`) and its skew

@@ -827,7 +827,9 @@ impl MultibodySolver {
                 // whatever the gap, so λ's work carries λ ε |x| (at low speeds, more than the
                 // energy's own round-off)
                 let size = c.x0.amax().max(c.reference.amax());
-                scale += (c.lambda_n * c.g1).abs() + (c.lambda_n * c.g0).abs() + 2.0 * c.lambda_n.abs() * size;
+                scale += (c.lambda_n * c.g1).abs()
+                    + (c.lambda_n * c.g0).abs()
+                    + 2.0 * c.lambda_n.abs() * size;
                 if c.active && c.was_active && !c.switched {
                     rec.holding_gap_work += c.lambda_n.abs() * (c.g0.abs() + c.g1.abs());
                 }

@@ -365,9 +365,12 @@ pub fn solve_step(
         for i in 0..n {
             ws.um[i] = data.u0[i] + d[i];
         }
-        let ok = data.bodies.bodies().iter().enumerate().all(|(b, body)| {
-            body.is_linear() || body.admissible(&ws.um[data.bodies.range(b)])
-        });
+        let ok = data
+            .bodies
+            .bodies()
+            .iter()
+            .enumerate()
+            .all(|(b, body)| body.is_linear() || body.admissible(&ws.um[data.bodies.range(b)]));
         if ok {
             break;
         }
@@ -494,7 +497,9 @@ pub fn solve_step(
                 for i in 0..n {
                     d[i] = l.d[i] + l.step * l.delta[i];
                 }
-                for (cand, (lam, dlam)) in candidates.iter_mut().zip(l.lambda.iter().zip(&l.dlambda)) {
+                for (cand, (lam, dlam)) in
+                    candidates.iter_mut().zip(l.lambda.iter().zip(&l.dlambda))
+                {
                     cand.lambda_n = lam.0 + l.step * dlam.0;
                     cand.lambda_t = lam.1 + l.step * dlam.1;
                 }
@@ -606,9 +611,10 @@ pub fn solve_step(
             for i in 0..n {
                 ws.um[i] = data.u0[i] + ws.trial[i];
             }
-            let ok = data.bodies.bodies().iter().enumerate().all(|(b, body)| {
-                body.is_linear() || body.admissible(&ws.um[data.bodies.range(b)])
-            });
+            let ok =
+                data.bodies.bodies().iter().enumerate().all(|(b, body)| {
+                    body.is_linear() || body.admissible(&ws.um[data.bodies.range(b)])
+                });
             if ok {
                 break;
             }
@@ -617,7 +623,10 @@ pub fn solve_step(
         let mut state = LineState {
             d: d.to_vec(),
             delta: delta[..n].iter().map(|v| step * v).collect(),
-            lambda: candidates.iter().map(|c| (c.lambda_n, c.lambda_t)).collect(),
+            lambda: candidates
+                .iter()
+                .map(|c| (c.lambda_n, c.lambda_t))
+                .collect(),
             dlambda: candidates
                 .iter()
                 .map(|c| {

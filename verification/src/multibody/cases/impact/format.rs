@@ -32,6 +32,9 @@ pub struct ImpactCase {
     pub gci: Option<GciSpec>,
     /// The work–precision study.
     pub work_precision: Option<WorkPrecisionSpec>,
+    /// Draw the first run's rings at six times (a run of its own).
+    #[serde(default)]
+    pub snapshots: bool,
 }
 
 /// `[[ring]]`: an annulus with its P1 mesh at resolution 1 and its initial rigid motion.
@@ -114,7 +117,12 @@ impl ImpactCase {
         positive(p, "final_time", self.final_time)?;
         positive(p, "material.young", self.material.young)?;
         if self.material.law().is_err() {
-            return Err(invalid(p, "material.poisson", self.material.poisson, "in (−1, 1/2)"));
+            return Err(invalid(
+                p,
+                "material.poisson",
+                self.material.poisson,
+                "in (−1, 1/2)",
+            ));
         }
         if self.rings.len() != 2 {
             return Err(invalid(p, "ring", self.rings.len(), "two [[ring]] tables"));
@@ -125,7 +133,12 @@ impl ImpactCase {
                 return Err(invalid(p, &format!("ring[{i}].outer"), r.outer, "> inner"));
             }
             if r.radial == 0 || r.around < 3 {
-                return Err(invalid(p, &format!("ring[{i}].around"), r.around, "radial ≥ 1, around ≥ 3"));
+                return Err(invalid(
+                    p,
+                    &format!("ring[{i}].around"),
+                    r.around,
+                    "radial ≥ 1, around ≥ 3",
+                ));
             }
         }
         if self.steps == 0 {
@@ -136,7 +149,12 @@ impl ImpactCase {
         }
         for (i, r) in self.runs.iter().enumerate() {
             if !(r.friction.is_finite() && r.friction >= 0.0) {
-                return Err(invalid(p, &format!("run[{i}].friction"), r.friction, "μ ≥ 0"));
+                return Err(invalid(
+                    p,
+                    &format!("run[{i}].friction"),
+                    r.friction,
+                    "μ ≥ 0",
+                ));
             }
         }
         if let Some(g) = &self.gci {
@@ -144,18 +162,37 @@ impl ImpactCase {
                 return Err(invalid(p, "gci.factors", g.factors.len(), "≥ 3 levels"));
             }
             let r = g.factors[1] / g.factors[0];
-            if !(r > 1.0) || g.factors.windows(2).any(|w| ((w[1] / w[0]) - r).abs() > 1e-12 * r) {
-                return Err(invalid(p, "gci.factors", format!("{:?}", g.factors), "increasing by a constant ratio"));
+            if !(r > 1.0)
+                || g.factors
+                    .windows(2)
+                    .any(|w| ((w[1] / w[0]) - r).abs() > 1e-12 * r)
+            {
+                return Err(invalid(
+                    p,
+                    "gci.factors",
+                    format!("{:?}", g.factors),
+                    "increasing by a constant ratio",
+                ));
             }
             positive(p, "gci.formal_order", g.formal_order)?;
             positive(p, "gci.max_percent", g.max_percent)?;
         }
         if let Some(w) = &self.work_precision {
             if w.schemes.is_empty() || w.factors.len() < 2 {
-                return Err(invalid(p, "work_precision.factors", w.factors.len(), "≥ 2 factors and ≥ 1 scheme"));
+                return Err(invalid(
+                    p,
+                    "work_precision.factors",
+                    w.factors.len(),
+                    "≥ 2 factors and ≥ 1 scheme",
+                ));
             }
             if self.gci.is_none() {
-                return Err(invalid(p, "work_precision", "(no [gci])", "a [gci] study (its extrapolation is the reference)"));
+                return Err(invalid(
+                    p,
+                    "work_precision",
+                    "(no [gci])",
+                    "a [gci] study (its extrapolation is the reference)",
+                ));
             }
         }
         Ok(())

@@ -49,22 +49,42 @@ fn jobs(c: &ImpactCase) -> Vec<Job> {
         }
     };
     for r in &c.runs {
-        push(Job { scheme: r.scheme, friction: r.friction, factor: 1.0, steps: None });
+        push(Job {
+            scheme: r.scheme,
+            friction: r.friction,
+            factor: 1.0,
+            steps: None,
+        });
     }
     if let Some(l) = &c.large_step {
         for scheme in [MultibodyScheme::EnergyMomentum, MultibodyScheme::Midpoint] {
-            push(Job { scheme, friction: 0.0, factor: 1.0, steps: Some(l.steps) });
+            push(Job {
+                scheme,
+                friction: 0.0,
+                factor: 1.0,
+                steps: Some(l.steps),
+            });
         }
     }
     if let Some(g) = &c.gci {
         for &f in &g.factors {
-            push(Job { scheme: MultibodyScheme::EnergyMomentum, friction: 0.0, factor: f, steps: None });
+            push(Job {
+                scheme: MultibodyScheme::EnergyMomentum,
+                friction: 0.0,
+                factor: f,
+                steps: None,
+            });
         }
     }
     if let Some(w) = &c.work_precision {
         for &scheme in &w.schemes {
             for &f in &w.factors {
-                push(Job { scheme, friction: 0.0, factor: f, steps: None });
+                push(Job {
+                    scheme,
+                    friction: 0.0,
+                    factor: f,
+                    steps: None,
+                });
             }
         }
     }
@@ -106,18 +126,28 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
     let mut rows = Vec::new();
     let mut shown: Vec<(String, &Outcome)> = Vec::new();
     for r in &c.runs {
-        let job = Job { scheme: r.scheme, friction: r.friction, factor: 1.0, steps: None };
+        let job = Job {
+            scheme: r.scheme,
+            friction: r.friction,
+            factor: 1.0,
+            steps: None,
+        };
         let name = format!("{} ({})", r.name, label(&job));
         match find(&job) {
             Err(e) => report.gates.push(GateVerdict::from_checks(
                 format!("run {}", r.name),
                 "energy audit",
-                vec![Check::holds(&format!("{name}: {e}"), false, "the run completes")],
+                vec![Check::holds(
+                    &format!("{name}: {e}"),
+                    false,
+                    "the run completes",
+                )],
                 "",
             )),
             Ok(o) => {
                 let s = &o.run.summary;
-                let mut checks = audit_checks(&r.name, s, Claims::of(r.scheme, [true, true], objective));
+                let mut checks =
+                    audit_checks(&r.name, s, Claims::of(r.scheme, [true, true], objective));
                 checks.push(Check::holds(
                     &format!("{}: the rings separate before T (no contact in the last 10 % of the steps)", r.name),
                     o.quantities.separated,
@@ -125,7 +155,10 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
                 ));
                 if let Some(min) = r.min_energy_error {
                     checks.push(Check::at_least(
-                        &format!("{}: max energy error in a step without a set change / E_0", r.name),
+                        &format!(
+                            "{}: max energy error in a step without a set change / E_0",
+                            r.name
+                        ),
                         s.unchanged_relative,
                         min,
                     ));
@@ -154,21 +187,35 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
     });
     let audit_runs: Vec<AuditRun<'_>> = shown
         .iter()
-        .map(|(n, o)| AuditRun { label: n.clone(), records: &o.run.solution.records })
+        .map(|(n, o)| AuditRun {
+            label: n.clone(),
+            records: &o.run.solution.records,
+        })
         .collect();
     plot_audits(ctx, report, "runs", "two rings", &audit_runs)?;
     let labelled: Vec<(&str, &Outcome)> = shown.iter().map(|(n, o)| (n.as_str(), *o)).collect();
-    ctx.plot(report, "contact_force", &plots::contact_force_figure("two rings", &labelled))?;
-    ctx.panels(report, "velocities", "two rings: centre-of-mass velocities (ring 1 dashed)", &plots::velocity_figures("two rings", &labelled), 2)?;
-    if let Some((_, first)) = shown.first() {
+    ctx.plot(
+        report,
+        "contact_force",
+        &plots::contact_force_figure("two rings", &labelled),
+    )?;
+    ctx.panels(
+        report,
+        "velocities",
+        "two rings: centre-of-mass velocities (ring 1 dashed)",
+        &plots::velocity_figures("two rings", &labelled),
+        2,
+    )?;
+    if let (true, Some((_, first))) = (c.snapshots, shown.first()) {
         let times: Vec<f64> = (0..=5).map(|i| c.final_time * i as f64 / 5.0).collect();
         let mut job = first.job;
         job.steps = Some(first.steps);
         let s = runs::solver(&c, &job)?;
         let mut params = contactlab::model::multibody::solver::MultibodyParams::default();
         params.snapshot_times = times;
-        let s = contactlab::model::multibody::solver::MultibodySolver::new(s.problem().clone(), params)
-            .map_err(|e| e.to_string())?;
+        let s =
+            contactlab::model::multibody::solver::MultibodySolver::new(s.problem().clone(), params)
+                .map_err(|e| e.to_string())?;
         let sol = s.solve().map_err(|e| e.to_string())?;
         ctx.triangle_panels(
             report,
@@ -215,7 +262,9 @@ fn run_row(name: &str, o: &Outcome) -> Vec<String> {
         format!("{:.3e}", s.friction_work / e0),
         fmt_v(o.quantities.rebound[0]),
         fmt_v(o.quantities.rebound[1]),
-        o.quantities.contact_duration.map_or("—".into(), |d| format!("{d:.5}")),
+        o.quantities
+            .contact_duration
+            .map_or("—".into(), |d| format!("{d:.5}")),
         format!(
             "{:.2} ({})",
             o.run.solution.stats.newton_iterations as f64 / o.steps.max(1) as f64,
@@ -231,20 +280,36 @@ fn large_step<'a>(
     find: &dyn Fn(&Job) -> &'a Result<Outcome, String>,
     report: &mut CaseReport,
 ) {
-    let em = find(&Job { scheme: MultibodyScheme::EnergyMomentum, friction: 0.0, factor: 1.0, steps: Some(l.steps) });
-    let mp = find(&Job { scheme: MultibodyScheme::Midpoint, friction: 0.0, factor: 1.0, steps: Some(l.steps) });
+    let em = find(&Job {
+        scheme: MultibodyScheme::EnergyMomentum,
+        friction: 0.0,
+        factor: 1.0,
+        steps: Some(l.steps),
+    });
+    let mp = find(&Job {
+        scheme: MultibodyScheme::Midpoint,
+        friction: 0.0,
+        factor: 1.0,
+        steps: Some(l.steps),
+    });
     let k = c.final_time / l.steps as f64;
     let mut checks = Vec::new();
     let mut rows = Vec::new();
     match em {
-        Err(e) => checks.push(Check::holds(&format!("energy_momentum at N = {}: {e}", l.steps), false, "completes")),
+        Err(e) => checks.push(Check::holds(
+            &format!("energy_momentum at N = {}: {e}", l.steps),
+            false,
+            "completes",
+        )),
         Ok(o) => {
             let r = &o.run.solution.records;
             let e0 = r[0].energy;
             let closing: f64 = r.iter().map(|x| x.activation_work + x.switch_work).sum();
             let other = (r[r.len() - 1].energy - e0 - closing).abs() / e0;
             checks.push(Check::at_most(
-                &format!("energy_momentum at k = {k}: |E_N − E_0 − Σ (activation + switch work)| / E_0"),
+                &format!(
+                    "energy_momentum at k = {k}: |E_N − E_0 − Σ (activation + switch work)| / E_0"
+                ),
                 other,
                 l.max_other_energy_change,
             ));
@@ -260,15 +325,35 @@ fn large_step<'a>(
     match mp {
         Err(e) => {
             let typed = !e.contains("NaN") && !e.is_empty();
-            checks.push(Check::holds(&format!("midpoint at k = {k} stops with a typed error: {e}"), typed, "a typed error (never NaN)"));
-            rows.push(vec!["midpoint".into(), e.clone(), "—".into(), "—".into(), "—".into()]);
+            checks.push(Check::holds(
+                &format!("midpoint at k = {k} stops with a typed error: {e}"),
+                typed,
+                "a typed error (never NaN)",
+            ));
+            rows.push(vec![
+                "midpoint".into(),
+                e.clone(),
+                "—".into(),
+                "—".into(),
+                "—".into(),
+            ]);
         }
         Ok(o) => {
             let r = &o.run.solution.records;
             let e0 = r[0].energy;
             let err = (r[r.len() - 1].energy - e0).abs() / e0;
-            checks.push(Check::at_least(&format!("midpoint at k = {k}: |E_N − E_0| / E_0"), err, l.min_midpoint_energy_error));
-            rows.push(vec!["midpoint".into(), "completed".into(), format!("{:.3e}", err), "—".into(), "—".into()]);
+            checks.push(Check::at_least(
+                &format!("midpoint at k = {k}: |E_N − E_0| / E_0"),
+                err,
+                l.min_midpoint_energy_error,
+            ));
+            rows.push(vec![
+                "midpoint".into(),
+                "completed".into(),
+                format!("{:.3e}", err),
+                "—".into(),
+                "—".into(),
+            ]);
         }
     }
     report.gates.push(GateVerdict::from_checks(
@@ -279,17 +364,29 @@ fn large_step<'a>(
     ));
     report.tables.push(Table {
         title: format!("Large step N = {} (k = {k})", l.steps),
-        header: ["scheme", "outcome", "(E_N − E_0)/E_0", "activation + switch work / E_0", "other change / E_0"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect(),
+        header: [
+            "scheme",
+            "outcome",
+            "(E_N − E_0)/E_0",
+            "activation + switch work / E_0",
+            "other change / E_0",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect(),
         rows,
     });
 }
 
 /// The reported quantities of the GCI study: each ring's rebound components and the contact
 /// duration.
-const QUANTITIES: [&str; 5] = ["ring 0 v_x", "ring 0 v_y", "ring 1 v_x", "ring 1 v_y", "contact duration"];
+const QUANTITIES: [&str; 5] = [
+    "ring 0 v_x",
+    "ring 0 v_y",
+    "ring 1 v_x",
+    "ring 1 v_y",
+    "contact duration",
+];
 
 fn quantity(o: &Outcome, q: usize) -> f64 {
     match q {
@@ -309,9 +406,14 @@ fn gci<'a>(
         .factors
         .iter()
         .map(|&f| {
-            find(&Job { scheme: MultibodyScheme::EnergyMomentum, friction: 0.0, factor: f, steps: None })
-                .as_ref()
-                .map_err(|e| format!("GCI level ×{f}: {e}"))
+            find(&Job {
+                scheme: MultibodyScheme::EnergyMomentum,
+                friction: 0.0,
+                factor: f,
+                steps: None,
+            })
+            .as_ref()
+            .map_err(|e| format!("GCI level ×{f}: {e}"))
         })
         .collect::<Result<_, _>>()?;
     let ratio = g.factors[1] / g.factors[0];
@@ -322,10 +424,17 @@ fn gci<'a>(
         let res = analyse(&values, ratio, g.formal_order).map_err(|e| e.to_string());
         let mut checks = Vec::new();
         match &res {
-            Err(e) => checks.push(Check::holds(&format!("{name}: {e}"), false, "an analysable sequence")),
+            Err(e) => checks.push(Check::holds(
+                &format!("{name}: {e}"),
+                false,
+                "an analysable sequence",
+            )),
             Ok(r) => {
                 checks.push(Check::at_most(
-                    &format!("{name}: GCI_fine (%), p = {}", r.order.map_or("—".into(), |p| format!("{p:.3}"))),
+                    &format!(
+                        "{name}: GCI_fine (%), p = {}",
+                        r.order.map_or("—".into(), |p| format!("{p:.3}"))
+                    ),
                     r.gci_fine_percent.unwrap_or(f64::INFINITY),
                     g.max_percent,
                 ));
@@ -339,7 +448,11 @@ fn gci<'a>(
                 }
                 rows.push(vec![
                     name.to_string(),
-                    values.iter().map(|v| format!("{v:.6}")).collect::<Vec<_>>().join(", "),
+                    values
+                        .iter()
+                        .map(|v| format!("{v:.6}"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
                     format!("{:?}", r.convergence),
                     r.order.map_or("—".into(), |p| format!("{p:.3}")),
                     r.extrapolated.map_or("—".into(), |v| format!("{v:.6}")),
@@ -348,7 +461,12 @@ fn gci<'a>(
                 ]);
             }
         }
-        report.gates.push(GateVerdict::from_checks(format!("GCI: {name}"), "gci", checks, &g.note));
+        report.gates.push(GateVerdict::from_checks(
+            format!("GCI: {name}"),
+            "gci",
+            checks,
+            &g.note,
+        ));
         results.push((name.to_string(), res.ok(), values));
     }
     report.tables.push(Table {
@@ -370,14 +488,23 @@ fn gci<'a>(
                 .x_label("h / h_finest")
                 .y_label(name.clone())
                 .semilog_x()
-                .series(crate::plot::Series::line_markers("levels", g.factors.iter().zip(values).map(|(f, v)| (finest / f, *v))));
+                .series(crate::plot::Series::line_markers(
+                    "levels",
+                    g.factors.iter().zip(values).map(|(f, v)| (finest / f, *v)),
+                ));
             if let Some(e) = r.as_ref().and_then(|r| r.extrapolated) {
                 fig = fig.horizontal_line(e, "Richardson extrapolation");
             }
             fig
         })
         .collect();
-    ctx.panels(report, "gci", "self-convergence of the reported quantities", &figures, 3)?;
+    ctx.panels(
+        report,
+        "gci",
+        "self-convergence of the reported quantities",
+        &figures,
+        3,
+    )?;
     let ext = |i: usize| results[i].1.as_ref().and_then(|r| r.extrapolated);
     Ok(match (ext(0), ext(1)) {
         (Some(a), Some(b)) => Some([a, b]),
@@ -394,17 +521,26 @@ fn work_precision<'a>(
     ctx: &RunContext,
 ) -> Result<(), String> {
     let v0 = c.rings[0].velocity;
-    let scale = (v0[0] * v0[0] + v0[1] * v0[1]).sqrt().max(f64::MIN_POSITIVE);
+    let scale = (v0[0] * v0[0] + v0[1] * v0[1])
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
     let mut points = Vec::new();
     let mut work_points = Vec::new();
     let mut rows = Vec::new();
     for &scheme in &w.schemes {
         for &f in &w.factors {
-            let job = Job { scheme, friction: 0.0, factor: f, steps: None };
+            let job = Job {
+                scheme,
+                friction: 0.0,
+                factor: f,
+                steps: None,
+            };
             match find(&job) {
                 Ok(o) => {
                     let v = o.quantities.rebound[0];
-                    let err = ((v[0] - reference[0]).powi(2) + (v[1] - reference[1]).powi(2)).sqrt() / scale;
+                    let err = ((v[0] - reference[0]).powi(2) + (v[1] - reference[1]).powi(2))
+                        .sqrt()
+                        / scale;
                     points.push((scheme.name().to_string(), o.dof_steps(), o.cpu_seconds, err));
                     work_points.push(WorkPoint {
                         scheme: scheme.name().to_string(),
@@ -414,9 +550,23 @@ fn work_precision<'a>(
                         cpu_seconds: o.cpu_seconds,
                         dof_steps: o.dof_steps(),
                     });
-                    rows.push(vec![scheme.name().into(), format!("{f}"), o.dofs.to_string(), o.steps.to_string(), format!("{err:.3e}"), format!("{:.3}", o.cpu_seconds)]);
+                    rows.push(vec![
+                        scheme.name().into(),
+                        format!("{f}"),
+                        o.dofs.to_string(),
+                        o.steps.to_string(),
+                        format!("{err:.3e}"),
+                        format!("{:.3}", o.cpu_seconds),
+                    ]);
                 }
-                Err(e) => rows.push(vec![scheme.name().into(), format!("{f}"), "—".into(), "—".into(), e.clone(), "—".into()]),
+                Err(e) => rows.push(vec![
+                    scheme.name().into(),
+                    format!("{f}"),
+                    "—".into(),
+                    "—".into(),
+                    e.clone(),
+                    "—".into(),
+                ]),
             }
         }
     }
@@ -425,16 +575,38 @@ fn work_precision<'a>(
         header: ["scheme", "resolution", "dofs", "steps", "error / |v_0|", "CPU (s)"].iter().map(|s| s.to_string()).collect(),
         rows,
     });
-    report.work_precision = Some(WorkPrecisionReport { error: "rebound velocity of ring 0 / |v_0|".into(), points: work_points });
-    ctx.panels(report, "work_precision", "work–precision of the three schemes", &plots::work_precision_figures(&points), 2)?;
+    report.work_precision = Some(WorkPrecisionReport {
+        error: "rebound velocity of ring 0 / |v_0|".into(),
+        points: work_points,
+    });
+    ctx.panels(
+        report,
+        "work_precision",
+        "work–precision of the three schemes",
+        &plots::work_precision_figures(&points),
+        2,
+    )?;
     if let (Some(base), Some(cheap), Some(max)) = (w.baseline, w.cheaper, w.max_work_ratio) {
-        let of = |s: MultibodyScheme| points.iter().filter(|p| p.0 == s.name()).collect::<Vec<_>>();
+        let of = |s: MultibodyScheme| {
+            points
+                .iter()
+                .filter(|p| p.0 == s.name())
+                .collect::<Vec<_>>()
+        };
         let (b, ch) = (of(base), of(cheap));
         let mut checks = Vec::new();
         match b.iter().min_by(|x, y| x.3.total_cmp(&y.3)) {
-            None => checks.push(Check::holds(&format!("{} has no completed level", base.name()), false, "levels")),
+            None => checks.push(Check::holds(
+                &format!("{} has no completed level", base.name()),
+                false,
+                "levels",
+            )),
             Some(finest) => {
-                let work = ch.iter().filter(|p| p.3 <= finest.3).map(|p| p.1).fold(f64::INFINITY, f64::min);
+                let work = ch
+                    .iter()
+                    .filter(|p| p.3 <= finest.3)
+                    .map(|p| p.1)
+                    .fold(f64::INFINITY, f64::min);
                 checks.push(Check::at_most(
                     &format!(
                         "dof-steps for {} to reach {}'s finest error {:.3e}, over {}'s",
@@ -448,7 +620,12 @@ fn work_precision<'a>(
                 ));
             }
         }
-        report.gates.push(GateVerdict::from_checks("work–precision".into(), "work_precision", checks, &w.note));
+        report.gates.push(GateVerdict::from_checks(
+            "work–precision".into(),
+            "work_precision",
+            checks,
+            &w.note,
+        ));
     }
     Ok(())
 }

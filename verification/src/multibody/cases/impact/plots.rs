@@ -2,8 +2,8 @@
 //! the contact force and the rings' centre velocities against time, and the work–precision
 //! diagram.
 
-use contactlab::model::multibody::solver::MultibodySnapshot;
 use contactlab::model::multibody::bodies::BodySet;
+use contactlab::model::multibody::solver::MultibodySnapshot;
 
 use crate::multibody::cases::impact::runs::Outcome;
 use crate::plot::{Figure, Series, TriangleField, TriangleMeshPlot};
@@ -25,9 +25,18 @@ fn green_strains(bodies: &BodySet, b: usize, u: &[f64]) -> Vec<f64> {
 pub fn snapshot_plots(bodies: &BodySet, snapshots: &[MultibodySnapshot]) -> Vec<TriangleMeshPlot> {
     let strains: Vec<Vec<f64>> = snapshots
         .iter()
-        .map(|s| (0..bodies.len()).flat_map(|b| green_strains(bodies, b, &s.displacement)).collect())
+        .map(|s| {
+            (0..bodies.len())
+                .flat_map(|b| green_strains(bodies, b, &s.displacement))
+                .collect()
+        })
         .collect();
-    let top = strains.iter().flatten().copied().fold(0.0f64, f64::max).max(1e-12);
+    let top = strains
+        .iter()
+        .flatten()
+        .copied()
+        .fold(0.0f64, f64::max)
+        .max(1e-12);
     snapshots
         .iter()
         .zip(strains)
@@ -40,7 +49,11 @@ pub fn snapshot_plots(bodies: &BodySet, snapshots: &[MultibodySnapshot]) -> Vec<
                 let offset = nodes.len();
                 let u = body.nodal(&s.displacement[bodies.range(b)]);
                 nodes.extend(mesh.displaced(&u, 1.0));
-                triangles.extend(mesh.triangles().iter().map(|t| [t[0] + offset, t[1] + offset, t[2] + offset]));
+                triangles.extend(
+                    mesh.triangles()
+                        .iter()
+                        .map(|t| [t[0] + offset, t[1] + offset, t[2] + offset]),
+                );
             }
             TriangleMeshPlot::new(format!("t = {:.3}", s.time), nodes, triangles)
                 .field(TriangleField::per_triangle("|E| (Green–Lagrange)", e).range(0.0, top))
@@ -50,9 +63,17 @@ pub fn snapshot_plots(bodies: &BodySet, snapshots: &[MultibodySnapshot]) -> Vec<
 
 /// Σ λ_N against time for each labelled run.
 pub fn contact_force_figure(title: &str, runs: &[(&str, &Outcome)]) -> Figure {
-    let mut fig = Figure::new(format!("{title}: total normal contact force Σ λ_N")).x_label("t").y_label("Σ λ_N");
+    let mut fig = Figure::new(format!("{title}: total normal contact force Σ λ_N"))
+        .x_label("t")
+        .y_label("Σ λ_N");
     for (i, (label, o)) in runs.iter().enumerate() {
-        fig = fig.series(Series::line(*label, o.run.history.iter().map(|h| (h.time, h.normal_force))).color(i));
+        fig = fig.series(
+            Series::line(
+                *label,
+                o.run.history.iter().map(|h| (h.time, h.normal_force)),
+            )
+            .color(i),
+        );
     }
     fig
 }
@@ -70,7 +91,10 @@ pub fn velocity_figures(title: &str, runs: &[(&str, &Outcome)]) -> Vec<Figure> {
                 for ring in 0..2 {
                     let series = Series::line(
                         format!("{label}: ring {ring}"),
-                        o.run.history.iter().map(|h| (h.time, h.velocities[ring][c])),
+                        o.run
+                            .history
+                            .iter()
+                            .map(|h| (h.time, h.velocities[ring][c])),
                     )
                     .color(i);
                     fig = fig.series(if ring == 1 { series.dashed() } else { series });
@@ -94,7 +118,10 @@ pub fn work_precision_figures(points: &[(String, f64, f64, f64)]) -> Vec<Figure>
             fig = fig.series(
                 Series::line_markers(
                     *s,
-                    points.iter().filter(|p| p.0 == *s).map(|p| (pick(p), p.3.max(1e-16))),
+                    points
+                        .iter()
+                        .filter(|p| p.0 == *s)
+                        .map(|p| (pick(p), p.3.max(1e-16))),
                 )
                 .color(i),
             );

@@ -67,8 +67,14 @@ fn scaled(n: usize, factor: f64) -> usize {
 }
 
 fn ring(c: &ImpactCase, r: &RingSpec, factor: f64) -> Result<Arc<PlaneBody>, String> {
-    let mesh = annulus(r.center, r.inner, r.outer, scaled(r.radial, factor), scaled(r.around, factor))
-        .map_err(|e| e.to_string())?;
+    let mesh = annulus(
+        r.center,
+        r.inner,
+        r.outer,
+        scaled(r.radial, factor),
+        scaled(r.around, factor),
+    )
+    .map_err(|e| e.to_string())?;
     let body = PlaneBody::new(PlaneBodyData {
         mesh,
         density: c.density,
@@ -94,10 +100,15 @@ fn outer(r: &RingSpec) -> BoundarySelector {
 /// The solver of a job: ring 0's outer boundary (slave) against ring 1's (master), single pass,
 /// Lagrange multipliers.
 pub fn solver(c: &ImpactCase, job: &Job) -> Result<MultibodySolver, String> {
-    let bodies = BodySet::new(vec![ring(c, &c.rings[0], job.factor)?, ring(c, &c.rings[1], job.factor)?])
+    let bodies = BodySet::new(vec![
+        ring(c, &c.rings[0], job.factor)?,
+        ring(c, &c.rings[1], job.factor)?,
+    ])
+    .map_err(|e| e.to_string())?;
+    let slave = ContactSurface::new(0, bodies.body(0), &outer(&c.rings[0]), "ring[0]")
         .map_err(|e| e.to_string())?;
-    let slave = ContactSurface::new(0, bodies.body(0), &outer(&c.rings[0]), "ring[0]").map_err(|e| e.to_string())?;
-    let master = ContactSurface::new(1, bodies.body(1), &outer(&c.rings[1]), "ring[1]").map_err(|e| e.to_string())?;
+    let master = ContactSurface::new(1, bodies.body(1), &outer(&c.rings[1]), "ring[1]")
+        .map_err(|e| e.to_string())?;
     let n = bodies.dofs();
     let mut v = vec![0.0; n];
     for (b, r) in c.rings.iter().enumerate() {
