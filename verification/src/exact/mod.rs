@@ -21,6 +21,7 @@
 
 pub mod bessel;
 pub mod bimaterial_strip;
+pub mod contact_patch;
 pub mod coulomb_friction;
 pub mod loaded_block;
 pub mod moving_string;
