@@ -128,6 +128,14 @@ pub struct RowScale {
     /// −δ on an active row's diagonal in the Newton matrix (not in the residual): keeps the
     /// matrix regular when constraints are redundant (two-pass on a flat interface).
     pub regularization: f64,
+    /// An inactive candidate activates only when λ_N − c g₁ exceeds the round-off of c g₁,
+    /// 16 ε c |x|_∞ (false in a step's first Newton iteration: a touching node, g₁ = 0, then
+    /// activates). Redundant constraints need it: two-pass on a flat interface writes the same
+    /// gap twice where the meshes share a node; the split of their force is fixed only by
+    /// c (g₁ − g₁′)/δ, round-off amplified by 1/δ, which can drive one multiplier negative — it
+    /// is released, and without the band it would re-activate on the sign of a round-off gap in
+    /// the next iteration and the active set would cycle with period 2.
+    pub hysteresis: bool,
 }
 
 impl Candidate {
@@ -180,7 +188,12 @@ impl Candidate {
             .add_assign(&(-self.lambda_n * d.dg));
         out.jac.fixed_view_mut::<6, 1>(0, 6).copy_from(&(-d.g));
         let (g1, dg1) = value_and_gradient(forms, &Gap, x1);
-        self.active = self.lambda_n - c * g1 >= 0.0;
+        let band = if scale.hysteresis && !self.active {
+            16.0 * f64::EPSILON * c * x1.amax()
+        } else {
+            0.0
+        };
+        self.active = self.lambda_n - c * g1 >= band;
         if self.active {
             out.r_n = c * g1;
             out.jac
@@ -304,6 +317,7 @@ mod tests {
             RowScale {
                 c: 3.0,
                 regularization: 0.0,
+                hysteresis: false,
             },
         );
         let mut r = [0.0; 8];
@@ -332,6 +346,7 @@ mod tests {
                 RowScale {
                     c: 3.0,
                     regularization: 0.0,
+                    hysteresis: false,
                 },
             );
             if law.has_friction() {
@@ -397,6 +412,39 @@ mod tests {
     }
 
     #[test]
+    fn released_constraint_reactivates_only_beyond_round_off_penetration() {
+        // a frictionless candidate on the segment (1, 0) → (0, 0) (outward normal +y: the gap
+        // is y_s), released (λ = 0, inactive), its slave node at the gap g
+        let forms = InvariantForms::new();
+        let law = PairLaw {
+            enforcement: Enforcement::Lagrange,
+            friction: 0.0,
+        };
+        let state = |g: f64, hysteresis: bool| {
+            let mut c = candidate();
+            c.lambda_n = 0.0;
+            c.active = false;
+            let x = Local6::from_column_slice(&[0.3, g, 1.0, 0.0, 0.0, 0.0]);
+            let scale = RowScale {
+                c: 3.0,
+                regularization: 0.0,
+                hysteresis,
+            };
+            c.contribute(&forms, &law, Evaluation::End, &x, scale);
+            c.active
+        };
+        // a round-off penetration (below 16 ε c |x|): it stays released with the band, it
+        // re-activates without (what made duplicated two-pass constraints cycle)
+        assert!(!state(-1e-17, true));
+        assert!(state(-1e-17, false));
+        // touching with the band off (a step's first iteration): active
+        assert!(state(0.0, false));
+        // a real penetration re-activates it; a gap keeps it released
+        assert!(state(-1e-9, true));
+        assert!(!state(1e-9, true));
+    }
+
+    #[test]
     fn slip_force_opposes_the_slip() {
         let forms = InvariantForms::new();
         let law = PairLaw {
@@ -413,6 +461,7 @@ mod tests {
             RowScale {
                 c: 3.0,
                 regularization: 0.0,
+                hysteresis: false,
             },
         );
         let Tangent::Slip(dir) = c.tangent else {

@@ -6,7 +6,10 @@
 //! ([`Candidate::contribute`]) and takes the full Newton step (cut back only where a body would be
 //! inverted, det F ≤ 0). A slave node whose projection leaves its segment (ξ < 0 or ξ > 1) moves
 //! to the neighbouring segment of the master surface, or is released at the master's free end;
-//! the system is then laid out anew.
+//! the system is then laid out anew. After the first iteration an inactive candidate activates
+//! only when it penetrates beyond the round-off of c g (a band that keeps a released redundant
+//! constraint — two-pass where the meshes share a node — from cycling on round-off gaps;
+//! [`RowScale::hysteresis`]).
 //!
 //! Convergence: the states did not change in the iteration and every row is within its tolerance
 //! — ‖R_u‖_∞ ≤ tol · s (s the largest sum of magnitudes of a row's terms, its round-off scale) and
@@ -440,6 +443,7 @@ pub fn solve_step(
         let scale = RowScale {
             c,
             regularization: 1e-12,
+            hysteresis: iteration > 1,
         };
         let mut worst = 0.0f64;
         let mut bound_c = 0.0;

@@ -24,6 +24,7 @@
 pub mod bar_impact;
 pub mod bessel;
 pub mod bimaterial_strip;
+pub mod contact_patch;
 pub mod coulomb_friction;
 pub mod loaded_block;
 pub mod moving_string;
