@@ -36,6 +36,7 @@ pub mod sliding_block;
 pub mod thick_string_continuum;
 pub mod thick_string_galerkin;
 pub mod thick_string_patch;
+pub mod two_block_slide;
 
 /// u and the derivatives the rod's equations and error norms need, at one (x, t).
 #[derive(Debug, Clone, Copy, PartialEq)]
