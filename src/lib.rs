@@ -47,7 +47,9 @@
 //!   safeguarded scalar semismooth Newton, quadratic eigenproblems (companion form, QZ for singular
 //!   masses), a small dense eigenvalue kernel for stability maps, and an RK4 integrator.
 //! - [`scene`]: TOML scenes validated into runnable models ([`scene::rod::RodScene`],
-//!   [`scene::plane::PlaneScene`], [`scene::dynamic::DynamicScene`], [`scene::moving`]).
+//!   [`scene::plane::PlaneScene`], [`scene::dynamic::DynamicScene`],
+//!   [`scene::multibody::MultibodyScene`] (a dynamic scene of `[[body]]` sections),
+//!   [`scene::moving`]).
 //! - [`error`]: typed errors naming fields, values, steps, times and residuals.
 //!
 //! ## Example

@@ -15,11 +15,13 @@ use serde::Serialize;
 
 use crate::error::{Error, InputError};
 use crate::model::dynamic::solver::DynamicSolution;
+use crate::model::multibody::solver::MultibodySolution;
 use crate::model::quasistatic::plane_output::PlaneSolution;
 use crate::model::quasistatic::rod_output::RodSolution;
 use crate::scene::common::scene_error;
 use crate::scene::dynamic::{DynamicScene, DynamicSceneFile};
 use crate::scene::moving::{DiscSceneResult, MovingScene, PlateSceneResult, StringSceneResult};
+use crate::scene::multibody::{MultibodyScene, MultibodySceneFile};
 use crate::scene::plane::{PlaneScene, PlaneSceneFile};
 use crate::scene::rod::{RodScene, RodSceneFile};
 
@@ -42,6 +44,9 @@ pub enum Scene {
     Plane(Box<PlaneScene>),
     /// `model = "dynamic"`: an elastic body against a rigid foundation.
     Dynamic(Box<DynamicScene>),
+    /// `model = "dynamic"` with `[[body]]` sections: several bodies in contact
+    /// ([`Scene::model`] says `"multibody"`).
+    Multibody(Box<MultibodyScene>),
     /// `model = "moving_string"`, `"disc_particle"` or `"rotating_plate"`: a moving continuum.
     Moving(MovingScene),
 }
@@ -53,6 +58,7 @@ pub enum Solution {
     Rod(RodSolution),
     Plane(PlaneSolution),
     Dynamic(DynamicSolution),
+    Multibody(Box<MultibodySolution>),
     MovingString(StringSceneResult),
     DiscParticle(DiscSceneResult),
     RotatingPlate(Box<PlateSceneResult>),
@@ -108,10 +114,25 @@ impl Scene {
                 file.base_dir = scene_dir(source_name);
                 Scene::Plane(Box::new(PlaneScene::from_file(file)?))
             }
+            // several bodies: `[[body]]`, an array of tables
+            "dynamic" if table.get("body").is_some_and(toml::Value::is_array) => {
+                let mut file: MultibodySceneFile = table.try_into().map_err(parse)?;
+                file.base_dir = scene_dir(source_name);
+                Scene::Multibody(Box::new(MultibodyScene::from_file(file)?))
+            }
             "dynamic" => {
                 let mut file: DynamicSceneFile = table.try_into().map_err(parse)?;
                 file.base_dir = scene_dir(source_name);
                 Scene::Dynamic(Box::new(DynamicScene::from_file(file)?))
+            }
+            "multibody" => {
+                return Err(InputError::new(
+                    "model",
+                    "\"multibody\"",
+                    "\"dynamic\" (a dynamic scene whose bodies are [[body]] sections is a \
+                     multibody scene)",
+                )
+                .into())
             }
             "moving_string" | "disc_particle" | "rotating_plate" => {
                 Scene::Moving(MovingScene::from_table(table, source_name)?)
@@ -127,12 +148,14 @@ impl Scene {
         })
     }
 
-    /// The scene's model, as its file names it.
+    /// The scene's model, as its file names it — except a dynamic scene of `[[body]]` sections,
+    /// which is `"multibody"` (the family that writes its results).
     pub fn model(&self) -> &'static str {
         match self {
             Scene::Rod(_) => "rod",
             Scene::Plane(_) => "plane",
             Scene::Dynamic(_) => "dynamic",
+            Scene::Multibody(_) => "multibody",
             Scene::Moving(MovingScene::String(_)) => "moving_string",
             Scene::Moving(MovingScene::Disc(_)) => "disc_particle",
             Scene::Moving(MovingScene::Plate(_)) => "rotating_plate",
@@ -145,6 +168,7 @@ impl Scene {
             Scene::Rod(s) => &s.title,
             Scene::Plane(s) => &s.title,
             Scene::Dynamic(s) => &s.title,
+            Scene::Multibody(s) => &s.title,
             Scene::Moving(MovingScene::String(s)) => &s.title,
             Scene::Moving(MovingScene::Disc(s)) => &s.title,
             Scene::Moving(MovingScene::Plate(s)) => &s.title,
@@ -157,6 +181,7 @@ impl Scene {
             Scene::Rod(s) => Solution::Rod(s.solver()?.solve(&s.output)?),
             Scene::Plane(s) => Solution::Plane(s.solver()?.solve(&s.output)?),
             Scene::Dynamic(s) => Solution::Dynamic(s.solve()?),
+            Scene::Multibody(s) => Solution::Multibody(Box::new(s.solve()?)),
             Scene::Moving(MovingScene::String(s)) => Solution::MovingString(s.run()?),
             Scene::Moving(MovingScene::Disc(s)) => Solution::DiscParticle(s.run()?),
             Scene::Moving(MovingScene::Plate(s)) => Solution::RotatingPlate(Box::new(s.run()?)),
@@ -171,6 +196,7 @@ impl Solution {
             Solution::Rod(_) => "rod",
             Solution::Plane(_) => "plane",
             Solution::Dynamic(_) => "dynamic",
+            Solution::Multibody(_) => "multibody",
             Solution::MovingString(_) => "moving_string",
             Solution::DiscParticle(_) => "disc_particle",
             Solution::RotatingPlate(_) => "rotating_plate",
@@ -196,6 +222,19 @@ impl Solution {
                 "dynamic body, {} steps, {} Newton iterations",
                 s.stats.steps, s.stats.newton_iterations
             ),
+            Solution::Multibody(s) => {
+                let a = s.summary();
+                format!(
+                    "multibody, {} steps, {} unknowns, {} Newton iterations: energy drift {:.3e}, \
+                     activation work {:.3e}, friction work {:.3e}",
+                    s.stats.steps,
+                    s.stats.unknowns,
+                    s.stats.newton_iterations,
+                    a.energy_drift,
+                    a.activation_work,
+                    a.friction_work
+                )
+            }
             Solution::MovingString(r) => format!(
                 "moving string, {} eigenvalues: {:?} (max Re λ = {:.6e})",
                 r.eigenvalues.len(),
@@ -255,10 +294,17 @@ const TABLE_KEYS: [&str; 26] = [
 ];
 
 /// Keys whose arrays of tables are the repeated sections (`[[sweep]]`).
-const REPEATED_KEYS: [&str; 3] = ["dirichlet", "traction", "sweep"];
+const REPEATED_KEYS: [&str; 4] = ["dirichlet", "traction", "sweep", "contact_pair"];
 
-/// A section written as something else is refused: serde would read `string = [0.5, 0.05]` as
-/// the fields of `[string]` in order, silently.
+/// Keys that are a table in one format and an array of tables in another: `body` (the one-body
+/// dynamic scene's `[body]`, the multibody scene's `[[body]]`).
+const TABLE_OR_REPEATED_KEYS: [&str; 1] = ["body"];
+
+/// In each table of the arrays `[[body]]` and `[[contact_pair]]`: the keys that hold a table
+/// (`body[0].material`) and those that hold an array of tables (`[[body.dirichlet]]`).
+const NESTED_TABLE_KEYS: [&str; 4] = ["material", "slave", "master", "foundation"];
+const NESTED_REPEATED_KEYS: [&str; 2] = ["dirichlet", "traction"];
+
 /// The directory of the scene file `source_name`, which the Gmsh files it names are relative to
 /// (`None` for a name without a directory: the working directory).
 fn scene_dir(source_name: &str) -> Option<std::path::PathBuf> {
@@ -268,36 +314,76 @@ fn scene_dir(source_name: &str) -> Option<std::path::PathBuf> {
         .map(Path::to_path_buf)
 }
 
-fn check_sections(table: &toml::Table) -> Result<(), Error> {
-    let section = |path: &str, v: &toml::Value| -> Result<(), Error> {
-        let ok = match v {
-            toml::Value::Table(_) => !REPEATED_KEYS.contains(&path),
-            toml::Value::Array(a) => {
-                REPEATED_KEYS.contains(&path) && a.iter().all(toml::Value::is_table)
-            }
-            _ => false,
-        };
-        if ok {
-            return Ok(());
-        }
-        let expected = if REPEATED_KEYS.contains(&path) {
-            format!("tables: [[{path}]] sections")
-        } else {
-            format!("a table: a [{path}] section or {path} = {{ key = value, … }}")
-        };
-        Err(InputError::new(path, v, expected).into())
+/// What a section key must hold.
+#[derive(Clone, Copy, PartialEq)]
+enum SectionKind {
+    Table,
+    Tables,
+    TableOrTables,
+}
+
+/// Checks that the section `path` (as written: `body[0].material`) holds what `kind` says.
+fn section(path: &str, kind: SectionKind, v: &toml::Value) -> Result<(), Error> {
+    let tables =
+        |v: &toml::Value| matches!(v, toml::Value::Array(a) if a.iter().all(toml::Value::is_table));
+    let ok = match kind {
+        SectionKind::Table => v.is_table(),
+        SectionKind::Tables => tables(v),
+        SectionKind::TableOrTables => v.is_table() || tables(v),
     };
-    for (k, v) in table {
-        if TABLE_KEYS.contains(&k.as_str()) || REPEATED_KEYS.contains(&k.as_str()) {
-            section(k, v)?;
+    if ok {
+        return Ok(());
+    }
+    let header = path.replace(|c: char| c == '[' || c.is_ascii_digit() || c == ']', "");
+    let expected = match kind {
+        SectionKind::Tables => format!("tables: [[{header}]] sections"),
+        SectionKind::Table => {
+            format!("a table: a [{header}] section or {path} = {{ key = value, … }}")
         }
-        if let toml::Value::Table(inner) = v {
-            for (k2, v2) in inner {
-                let path = format!("{k}.{k2}");
-                if TABLE_KEYS.contains(&path.as_str()) {
-                    section(&path, v2)?;
+        SectionKind::TableOrTables => format!(
+            "a table (a [{header}] section: one body) or tables ([[{header}]] sections: several \
+             bodies)"
+        ),
+    };
+    Err(InputError::new(path, v, expected).into())
+}
+
+/// A section written as something else is refused: serde would read `string = [0.5, 0.05]` as
+/// the fields of `[string]` in order, silently.
+fn check_sections(table: &toml::Table) -> Result<(), Error> {
+    for (k, v) in table {
+        let key = k.as_str();
+        if TABLE_OR_REPEATED_KEYS.contains(&key) {
+            section(k, SectionKind::TableOrTables, v)?;
+        } else if REPEATED_KEYS.contains(&key) {
+            section(k, SectionKind::Tables, v)?;
+        } else if TABLE_KEYS.contains(&key) {
+            section(k, SectionKind::Table, v)?;
+        }
+        match v {
+            toml::Value::Table(inner) => {
+                for (k2, v2) in inner {
+                    let path = format!("{k}.{k2}");
+                    if TABLE_KEYS.contains(&path.as_str()) {
+                        section(&path, SectionKind::Table, v2)?;
+                    }
                 }
             }
+            // the tables of [[body]] and [[contact_pair]]
+            toml::Value::Array(a) if matches!(key, "body" | "contact_pair") => {
+                for (i, t) in a.iter().enumerate() {
+                    let Some(t) = t.as_table() else { continue };
+                    for (k2, v2) in t {
+                        let path = format!("{k}[{i}].{k2}");
+                        if NESTED_TABLE_KEYS.contains(&k2.as_str()) {
+                            section(&path, SectionKind::Table, v2)?;
+                        } else if NESTED_REPEATED_KEYS.contains(&k2.as_str()) {
+                            section(&path, SectionKind::Tables, v2)?;
+                        }
+                    }
+                }
+            }
+            _ => {}
         }
     }
     Ok(())
@@ -378,7 +464,11 @@ mod tests {
         for f in files {
             let text = std::fs::read_to_string(&f).expect("readable");
             let table: toml::Table = text.parse().expect("TOML");
-            let named = table["model"].as_str().expect("model").to_string();
+            let mut named = table["model"].as_str().expect("model").to_string();
+            // a dynamic scene of [[body]] sections is the multibody model
+            if named == "dynamic" && table.get("body").is_some_and(toml::Value::is_array) {
+                named = "multibody".into();
+            }
             let scene = Scene::load(&f).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
             assert_eq!(scene.model(), named, "{}", f.display());
         }

@@ -123,13 +123,23 @@ pub(crate) fn dirichlet_parts(
     sections: &[DirichletSection],
     gmsh: Option<&GmshMesh>,
 ) -> Result<Vec<DirichletPart>, InputError> {
+    dirichlet_parts_at("", sections, gmsh)
+}
+
+/// [`dirichlet_parts`] of sections nested in another (`[[body.dirichlet]]`): section i named
+/// `{prefix}dirichlet[i]` (`prefix` = `body[1].`).
+pub(crate) fn dirichlet_parts_at(
+    prefix: &str,
+    sections: &[DirichletSection],
+    gmsh: Option<&GmshMesh>,
+) -> Result<Vec<DirichletPart>, InputError> {
     sections
         .iter()
         .enumerate()
         .map(|(i, d)| {
             Ok(DirichletPart {
                 boundary: selector(
-                    &format!("dirichlet[{i}]"),
+                    &format!("{prefix}dirichlet[{i}]"),
                     Selection {
                         sides: &d.sides,
                         where_: d.where_.as_ref(),
@@ -187,24 +197,54 @@ pub(crate) fn require_parts_selected(
     traction: &[TractionPart],
     contact: Option<&BoundarySelector>,
 ) -> Result<(), InputError> {
+    require_parts_selected_at("", mesh, dirichlet, traction)?;
+    require_selected(mesh, contact.map(|c| ("contact".to_string(), c)))
+}
+
+/// [`require_selected`] for the Dirichlet and traction parts of a nested section (named
+/// `{prefix}dirichlet[i]`, `{prefix}traction[i]`).
+pub(crate) fn require_parts_selected_at(
+    prefix: &str,
+    mesh: &TriangleMesh,
+    dirichlet: &[DirichletPart],
+    traction: &[TractionPart],
+) -> Result<(), InputError> {
     require_selected(
         mesh,
         dirichlet
             .iter()
             .enumerate()
-            .map(|(i, d)| (format!("dirichlet[{i}]"), &d.boundary))
+            .map(|(i, d)| (format!("{prefix}dirichlet[{i}]"), &d.boundary))
             .chain(
                 traction
                     .iter()
                     .enumerate()
-                    .map(|(i, t)| (format!("traction[{i}]"), &t.boundary)),
-            )
-            .chain(contact.map(|c| ("contact".to_string(), c))),
+                    .map(|(i, t)| (format!("{prefix}traction[{i}]"), &t.boundary)),
+            ),
     )
+}
+
+/// [`require_selected`] for one part, named `name` (`contact_pair[0].slave`).
+pub(crate) fn require_part_selected(
+    mesh: &TriangleMesh,
+    name: &str,
+    part: &BoundarySelector,
+) -> Result<(), InputError> {
+    require_selected(mesh, [(name.to_string(), part)])
 }
 
 /// The traction parts of the `[[traction]]` sections, section i named `traction[i]`.
 pub(crate) fn traction_parts(
+    sections: &[TractionSection],
+    gmsh: Option<&GmshMesh>,
+) -> Result<Vec<TractionPart>, InputError> {
+    traction_parts_at("", sections, gmsh)
+}
+
+/// [`traction_parts`] of sections nested in another (`[[body.traction]]`): section i named
+/// `{prefix}traction[i]` (`prefix` = `body[1].`).
+pub(crate) fn traction_parts_at(
+    prefix: &str,
     sections: &[TractionSection],
     gmsh: Option<&GmshMesh>,
 ) -> Result<Vec<TractionPart>, InputError> {
@@ -214,7 +254,7 @@ pub(crate) fn traction_parts(
         .map(|(i, t)| {
             Ok(TractionPart {
                 boundary: selector(
-                    &format!("traction[{i}]"),
+                    &format!("{prefix}traction[{i}]"),
                     Selection {
                         sides: &t.sides,
                         where_: t.where_.as_ref(),
@@ -222,7 +262,7 @@ pub(crate) fn traction_parts(
                     },
                     gmsh,
                 )?,
-                traction: vector(&format!("traction[{i}].value"), &t.value)?,
+                traction: vector(&format!("{prefix}traction[{i}].value"), &t.value)?,
             })
         })
         .collect()

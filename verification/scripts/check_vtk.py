@@ -28,6 +28,16 @@ the `solution.json` the same run wrote:
   region's triangles (its physical group, placed by x ↦ scale x + offset) found among the cells
   by their centroids must carry the region's index + 1, every other cell 0.
 
+For a multibody scene (the JSON lists `bodies`): one grid of all bodies, each body's nodes after
+the previous bodies'; the points and triangles against the JSON's bodies; `body_id` per cell
+the body's index; displacement and velocity at every node against the JSON snapshot's bodies;
+the contact arrays (`contact_node`, `contact_pressure`, `contact_gap`, `contact_slip`,
+`contact_active`, and `friction_traction` where a pair has friction) present exactly when the
+scene has pairs, `contact_node` 1 exactly on the pairs' slave nodes, the pressure Σ λ_N / w, the
+active flag and the candidates' gap and slip against the snapshot's contact states, every
+contact array zero off the contact boundary; strain and stress against each body's law written
+here (its description), von Mises from the stress tensor.
+
 Usage: check_vtk.py DIR [DIR ...]; exits 1 on the first failed directory's list of problems.
 """
 
@@ -43,6 +53,7 @@ import numpy as np
 CONTACT_QUASISTATIC = ["contact_pressure", "contact_normal_velocity", "contact_active", "contact_node"]
 CONTACT_DYNAMIC = ["contact_pressure", "contact_gap", "contact_active", "contact_node"]
 FRICTION = ["friction_traction", "slip_velocity"]
+CONTACT_MULTIBODY = ["contact_node", "contact_pressure", "contact_gap", "contact_slip", "contact_active"]
 CELL = ["strain", "stress", "von_mises", "body_id", "region"]
 LAW = r"(linear elastic|St Venant-Kirchhoff|neo-Hooke), plane strain \(λ = ([^,]+), μ = ([^)]+)\)"
 
@@ -176,6 +187,8 @@ def expected_regions(sol, triangles_xy):
 
 
 def family(sol):
+    if "bodies" in sol:
+        return "multibody"
     if "dimension" in sol:
         return "dynamic_" + sol["dimension"]
     if "triangles" in sol:
@@ -198,10 +211,104 @@ def snapshot_view(fam, sol, s):
     return s["time"], np.column_stack([s["displacement"], np.zeros(n)]), None
 
 
+def check_multibody(d: Path, sol, p: Problems):
+    """The checks of a multibody series (module docs); returns (.vtu count, arrays seen)."""
+    root = ET.parse(d / "solution.pvd").getroot()
+    p.check(root.get("type") == "Collection", "the .pvd is not a Collection")
+    entries = [(float(e.get("timestep")), e.get("file")) for e in root.iter("DataSet")]
+    snaps = sol["snapshots"]
+    p.check(len(entries) == len(snaps), f"{len(entries)} .vtu in the .pvd, {len(snaps)} JSON snapshots")
+    bodies = sol["bodies"]
+    offsets = np.cumsum([0] + [len(b["nodes"]) for b in bodies])
+    nodes = np.concatenate([np.array(b["nodes"], float) for b in bodies])
+    triangles = np.concatenate([np.array(b["triangles"], int) + o for b, o in zip(bodies, offsets)])
+    body_of_cell = np.concatenate([np.full(len(b["triangles"]), i) for i, b in enumerate(bodies)])
+    n, c = len(nodes), len(triangles)
+    pairs = sol["pairs"]
+    slave = np.zeros(n, bool)
+    for pr in pairs:
+        b = [x["name"] for x in bodies].index(pr["slave"])
+        slave[offsets[b] + np.array(pr["slave_nodes"], int)] = True
+    friction = any(pr["friction"] > 0 for pr in pairs)
+    arrays_seen = set()
+    for (t, file), s in zip(entries, snaps):
+        where = f"{d.name}/{file} (t = {t})"
+        p.check(t == s["time"], f"{where}: .pvd time {t!r}, JSON snapshot time {s['time']!r}")
+        m = meshio.read(d / file)
+        p.check(m.points.shape == (n, 3), f"{where}: points {m.points.shape}, JSON {n} nodes")
+        if m.points.shape != (n, 3):
+            continue
+        p.check(close(m.points[:, :2], nodes, 0) and not np.any(m.points[:, 2]), f"{where}: coordinates differ from the JSON's bodies")
+        kinds = [cb.type for cb in m.cells]
+        p.check(kinds == ["triangle"], f"{where}: cell blocks {kinds}, expected [triangle]")
+        conn = m.cells[0].data if m.cells else np.zeros((0, 3), int)
+        p.check(np.array_equal(conn, triangles), f"{where}: triangles differ from the JSON's bodies'")
+        pd = {k: np.asarray(v) for k, v in m.point_data.items()}
+        cd = {k: np.asarray(v[0]) for k, v in m.cell_data.items()}
+        arrays_seen |= set(pd) | set(cd)
+        for name, a in list(pd.items()) + list(cd.items()):
+            if np.issubdtype(a.dtype, np.floating):
+                p.check(bool(np.all(np.isfinite(a))), f"{where}: `{name}` has non-finite values")
+        u = np.concatenate([np.reshape(b["displacement"], (-1, 2)) for b in s["bodies"]])
+        v = np.concatenate([np.reshape(b["velocity"], (-1, 2)) for b in s["bodies"]])
+        for name, want in [("displacement", u), ("velocity", v)]:
+            if p.check(name in pd and pd[name].shape == (n, 3), f"{where}: no `{name}` of shape ({n}, 3)"):
+                p.check(close(pd[name][:, :2], want, 0) and not np.any(pd[name][:, 2]), f"{where}: {name} differs from the JSON's")
+        # contact arrays
+        want = CONTACT_MULTIBODY + (["friction_traction"] if friction else []) if pairs else []
+        present = [k for k in CONTACT_MULTIBODY + ["friction_traction"] if k in pd]
+        p.check(present == want, f"{where}: contact arrays {present}, expected {want}")
+        for k in present:
+            pd[k] = pd[k].reshape(-1)
+        if present == want and pairs:
+            p.check(np.array_equal(pd["contact_node"] == 1, slave) and np.all(np.isin(pd["contact_node"], [0, 1])),
+                    f"{where}: contact_node is not 1 exactly on the pairs' slave nodes")
+            for k in present:
+                p.check(not np.any(pd[k][~slave]), f"{where}: `{k}` nonzero off the contact boundary")
+            pressure, active = np.zeros(n), np.zeros(n)
+            gap = np.full(n, np.inf)
+            slip = np.zeros(n)
+            for ct in s["contacts"]:
+                i = offsets[ct["body"]] + ct["node"]
+                pressure[i] += ct["pressure"]
+                if ct["gap"] < gap[i]:
+                    gap[i], slip[i] = ct["gap"], ct["slip"]
+                active[i] = max(active[i], 1.0 if ct["active"] else 0.0)
+            cand = np.isfinite(gap)
+            p.check(close(pd["contact_pressure"], pressure, 1e-12), f"{where}: contact_pressure differs from Σ λ_N / w of the JSON's contact states")
+            p.check(np.array_equal(pd["contact_active"], active), f"{where}: contact_active differs from the JSON's contact states")
+            p.check(close(pd["contact_gap"][cand], gap[cand], 0) and close(pd["contact_slip"][cand], slip[cand], 0),
+                    f"{where}: the candidates' gap or slip differ from the JSON's contact states")
+        # cell data
+        for name in ["strain", "stress", "von_mises", "body_id"]:
+            p.check(name in cd, f"{where}: no cell array `{name}`")
+        if not all(name in cd for name in ["strain", "stress", "von_mises", "body_id"]):
+            continue
+        p.check(np.array_equal(cd["body_id"].reshape(-1), body_of_cell), f"{where}: body_id is not each cell's body index")
+        vm = cd["von_mises"].reshape(-1)
+        p.check(close(vm, von_mises(cd["stress"]), 1e-12), f"{where}: von_mises differs from the stress tensor's")
+        F = deformation_gradients(nodes, triangles, u)
+        stress, strain = np.zeros((c, 9)), np.zeros((c, 9))
+        for b, body in enumerate(bodies):
+            law = law_stress(body["description"], F)
+            if not p.check(law is not None, f"{where}: no law known here in {body['description']!r}"):
+                continue
+            on = body_of_cell == b
+            stress[on], strain[on] = law[0][on], law[1][on]
+        scale = max(1.0, float(np.max(np.abs(stress))))
+        p.check(bool(np.all(np.abs(cd["stress"] - stress) <= 1e-9 * scale)),
+                f"{where}: stress differs from the laws' written here (max {np.max(np.abs(cd['stress'] - stress))!r})")
+        p.check(close(cd["strain"], strain, 1e-9), f"{where}: strain differs from the laws' measures written here")
+    return len(entries), sorted(arrays_seen)
+
+
 def check_dir(d: Path):
     p = Problems()
     sol = json.loads((d / "solution.json").read_text())
     fam = family(sol)
+    if fam == "multibody":
+        count, arrays = check_multibody(d, sol, p)
+        return p, fam, count, arrays
     root = ET.parse(d / "solution.pvd").getroot()
     p.check(root.get("type") == "Collection", "the .pvd is not a Collection")
     entries = [(float(e.get("timestep")), e.get("file")) for e in root.iter("DataSet")]

@@ -151,9 +151,11 @@ pub fn request_vtk(scene: &mut Scene) -> Result<(), String> {
         Scene::Rod(s) => s.vtk = true,
         Scene::Plane(s) => s.file.output.vtk = true,
         Scene::Dynamic(s) => s.file.output.vtk = true,
+        Scene::Multibody(s) => s.file.output.vtk = true,
         Scene::Moving(_) => {
             return Err(format!(
-                "--vtk: model `{}` writes no ParaView files (rod, plane and dynamic scenes do)",
+                "--vtk: model `{}` writes no ParaView files (rod, plane, dynamic and multibody \
+                 scenes do)",
                 scene.model()
             ))
         }
@@ -173,6 +175,7 @@ pub fn run_scene_with(file: &Path, out: &Path, vtk: bool) -> Result<String, Stri
         Scene::Rod(s) => (s.vtk, s.output.snapshot_times.is_empty()),
         Scene::Plane(s) => (s.file.output.vtk, s.output.snapshot_times.is_empty()),
         Scene::Dynamic(s) => (s.file.output.vtk, s.file.output.times.is_empty()),
+        Scene::Multibody(s) => (s.file.output.vtk, s.file.output.times.is_empty()),
         Scene::Moving(_) => (false, false),
     };
     if wants_vtk && no_times {

@@ -117,6 +117,29 @@ pub struct BodySection {
     pub offset: Option<[f64; 2]>,
 }
 
+impl BodySection {
+    /// The plane-shape keys of the section.
+    pub(crate) fn plane_shape(&self) -> crate::scene::plane_shape::PlaneShape<'_> {
+        crate::scene::plane_shape::PlaneShape {
+            shape: &self.shape,
+            origin: self.origin,
+            size: self.size,
+            divisions: self.divisions,
+            diagonal: self.diagonal,
+            center: self.center,
+            radius: self.radius,
+            rings: self.rings,
+            inner: self.inner,
+            outer: self.outer,
+            radial: self.radial,
+            around: self.around,
+            file: self.file.as_ref(),
+            scale: self.scale,
+            offset: self.offset,
+        }
+    }
+}
+
 /// `[material]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

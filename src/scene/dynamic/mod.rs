@@ -247,32 +247,20 @@ impl DynamicScene {
 /// the node count of its file, once read.
 fn dynamic_memory(file: &DynamicSceneFile) -> Result<(), Error> {
     let b = &file.body;
-    let f = |v: Option<usize>| v.map_or(0.0, |n| n as f64);
-    let s = |v: Option<usize>| v.unwrap_or_default().to_string();
     let (field, written, nodes, dim) = match b.shape.as_str() {
-        "bar" => ("body.elements", s(b.elements), f(b.elements) + 1.0, 1.0),
-        "rectangle" => {
-            let d = b.divisions.unwrap_or_default();
-            let [nx, ny] = d.map(|v| v as f64);
-            let written = format!("[{}, {}]", d[0], d[1]);
-            ("body.divisions", written, (nx + 1.0) * (ny + 1.0), 2.0)
-        }
-        "disk" => (
-            "body.rings",
-            s(b.rings),
-            4.0 * (f(b.rings) + 1.0).powi(2),
-            2.0,
-        ),
-        "annulus" => (
-            "body.radial",
-            format!("{} (around = {})", s(b.radial), s(b.around)),
-            (f(b.radial) + 1.0) * f(b.around),
-            2.0,
+        "bar" => (
+            "body.elements".to_string(),
+            b.elements.unwrap_or_default().to_string(),
+            b.elements.map_or(0.0, |n| n as f64) + 1.0,
+            1.0,
         ),
         // "gmsh": checked once the file is read, from its node count (require_run_memory)
-        _ => return Ok(()),
+        _ => match b.plane_shape().node_estimate("body") {
+            Some((field, written, nodes)) => (field, written, nodes, 2.0),
+            None => return Ok(()),
+        },
     };
-    require_run_memory(file, field, written, nodes, dim)
+    require_run_memory(file, &field, written, nodes, dim)
 }
 
 /// The estimate of [`dynamic_memory`] for a body of `nodes` nodes in `dim` dimensions, against

@@ -5,22 +5,21 @@ use std::sync::Arc;
 
 use crate::error::{Error, InputError};
 use crate::field::Field;
-use crate::material::hyperelastic::{Hyperelastic2d, LinearElastic, NeoHooke, StVenantKirchhoff};
-use crate::mesh::generators::{annulus, disk};
+use crate::material::hyperelastic::Hyperelastic2d;
 use crate::mesh::gmsh::GmshMesh;
-use crate::mesh::triangle::{Grading, TriangleMesh};
+use crate::mesh::triangle::TriangleMesh;
 use crate::model::dynamic::contact_model::ContactModel;
 use crate::model::dynamic::plane_body::{BodyRegion, PlaneBody, PlaneBodyData};
 use crate::model::quasistatic::plane::BoundarySelector;
 use crate::scene::boundary::{
     dirichlet_parts, require_parts_selected, selector, traction_parts, Selection,
 };
-use crate::scene::common::mesh_field_as_written;
-use crate::scene::common::{missing, reject_keys};
+use crate::scene::common::missing;
 use crate::scene::dynamic::body::{BodyParts, SceneBody};
 use crate::scene::dynamic::contact::{friction, treatment};
 use crate::scene::dynamic::format::{pair, BodySection, DynamicContactSection, DynamicSceneFile};
-use crate::scene::plane::read_gmsh;
+use crate::scene::hyperelastic_law::hyperelastic;
+use crate::scene::plane_shape::plane_mesh;
 
 /// The mesh of the plane shape `b.shape` (`rectangle`, `disk`, `annulus` or `gmsh`) from its
 /// keys, and the Gmsh file it was read from (for its groups); `given` lists which keys of
@@ -30,81 +29,13 @@ pub(super) fn mesh(
     given: &[(&str, bool)],
     base_dir: Option<&std::path::Path>,
 ) -> Result<(TriangleMesh, Option<GmshMesh>), Error> {
-    if b.shape == "gmsh" {
-        reject_keys(
-            "body",
-            ("shape", "gmsh"),
-            given,
-            &["file", "scale", "offset"],
-        )?;
-        let gmsh = read_gmsh("body", b.file.as_ref(), b.scale, b.offset, base_dir)?;
-        return Ok((gmsh.mesh.clone(), Some(gmsh)));
-    }
-    let mesh = match b.shape.as_str() {
-        "rectangle" => {
-            reject_keys(
-                "body",
-                ("shape", "rectangle"),
-                given,
-                &["origin", "size", "divisions", "diagonal"],
-            )?;
-            TriangleMesh::graded_rectangle(
-                b.origin.unwrap_or([0.0, 0.0]),
-                b.size
-                    .ok_or_else(|| missing("body.size", "[width, height]"))?,
-                b.divisions
-                    .ok_or_else(|| missing("body.divisions", "[n_x, n_y]"))?,
-                b.diagonal.unwrap_or_default(),
-                [Grading::UNIFORM; 2],
-            )
-            .map_err(mesh_field_as_written("body"))?
-        }
-        "disk" => {
-            reject_keys(
-                "body",
-                ("shape", "disk"),
-                given,
-                &["center", "radius", "rings"],
-            )?;
-            disk(
-                b.center.ok_or_else(|| missing("body.center", "[x, y]"))?,
-                b.radius
-                    .ok_or_else(|| missing("body.radius", "a radius > 0"))?,
-                b.rings
-                    .ok_or_else(|| missing("body.rings", "a number of rings ≥ 1"))?,
-            )
-            .map_err(mesh_field_as_written("body"))?
-        }
-        "annulus" => {
-            reject_keys(
-                "body",
-                ("shape", "annulus"),
-                given,
-                &["center", "inner", "outer", "radial", "around"],
-            )?;
-            annulus(
-                b.center.ok_or_else(|| missing("body.center", "[x, y]"))?,
-                b.inner
-                    .ok_or_else(|| missing("body.inner", "a radius > 0"))?,
-                b.outer
-                    .ok_or_else(|| missing("body.outer", "a radius > inner"))?,
-                b.radial
-                    .ok_or_else(|| missing("body.radial", "layers ≥ 1"))?,
-                b.around
-                    .ok_or_else(|| missing("body.around", "cells around ≥ 3"))?,
-            )
-            .map_err(mesh_field_as_written("body"))?
-        }
-        other => {
-            return Err(InputError::new(
-                "body.shape",
-                format!("\"{other}\""),
-                "\"bar\", \"rectangle\", \"disk\", \"annulus\" or \"gmsh\"",
-            )
-            .into())
-        }
-    };
-    Ok((mesh, None))
+    plane_mesh(
+        "body",
+        &b.plane_shape(),
+        given,
+        base_dir,
+        "\"bar\", \"rectangle\", \"disk\", \"annulus\" or \"gmsh\"",
+    )
 }
 
 /// The boundary part a dynamic `[contact]` section selects, if it selects one.
@@ -113,34 +44,6 @@ fn contact_selection(c: &DynamicContactSection) -> Option<Selection<'_>> {
         sides: &c.sides,
         where_: c.where_.as_ref(),
         group: c.group.as_ref(),
-    })
-}
-
-/// The plane-strain law `law` with Young's modulus `young` and Poisson's ratio `poisson`; errors
-/// name `{prefix}.law`, `{prefix}.young`, `{prefix}.poisson`.
-fn hyperelastic(
-    prefix: &str,
-    law: &str,
-    young: f64,
-    poisson: f64,
-) -> Result<Arc<dyn Hyperelastic2d>, InputError> {
-    Ok(match law {
-        "linear" => Arc::new(
-            LinearElastic::from_young_poisson(young, poisson).map_err(|e| e.within(prefix))?,
-        ),
-        "st_venant_kirchhoff" => Arc::new(
-            StVenantKirchhoff::from_young_poisson(young, poisson).map_err(|e| e.within(prefix))?,
-        ),
-        "neo_hooke" => {
-            Arc::new(NeoHooke::from_young_poisson(young, poisson).map_err(|e| e.within(prefix))?)
-        }
-        other => {
-            return Err(InputError::new(
-                format!("{prefix}.law"),
-                format!("\"{other}\""),
-                "\"linear\", \"st_venant_kirchhoff\" or \"neo_hooke\"",
-            ))
-        }
     })
 }
 

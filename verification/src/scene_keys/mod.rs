@@ -23,13 +23,21 @@ pub fn generate(src: &Path) -> Result<Vec<ModelKeys>, String> {
     let source = source::scan(src)?;
     models::MODELS
         .iter()
-        .map(|&(model, root, file)| model_keys(&source, model, root, file))
+        .map(|&(model, root, file)| model_keys(&source, model, None, root, file))
+        .chain(
+            models::VARIANTS
+                .iter()
+                .map(|&(name, model, how, root, file)| {
+                    model_keys(&source, name, Some((model, how)), root, file)
+                }),
+        )
         .collect()
 }
 
 fn model_keys(
     source: &Source,
     model: &'static str,
+    selected_by: Option<(&'static str, &'static str)>,
     root: &str,
     file: &str,
 ) -> Result<ModelKeys, String> {
@@ -46,6 +54,7 @@ fn model_keys(
     }
     Ok(ModelKeys {
         model,
+        selected_by,
         root: root.to_string(),
         file: file.to_string(),
         doc: rows

@@ -7,7 +7,11 @@ use crate::scene_keys::walk::Row;
 /// The keys of one model.
 #[derive(Debug, Clone)]
 pub struct ModelKeys {
+    /// The model's name (`contactlab::scene::Scene::model`): the section's heading.
     pub model: &'static str,
+    /// What the file's `model` key says and how the table selects this format among that
+    /// model's (`None`: the key names this model).
+    pub selected_by: Option<(&'static str, &'static str)>,
     /// The scene-file struct.
     pub root: String,
     /// Its file under `src/`.
@@ -35,6 +39,18 @@ pub const MODELS: [(&str, &str, &str); 6] = [
         "scene/moving/plate.rs",
     ),
 ];
+
+/// Formats a model's table takes besides its own, chosen by the table's shape: (the name
+/// `contactlab::scene::Scene::model` gives them, the `model` the file names, how the table
+/// selects the format, the scene-file struct, its file under `src/`).
+pub const VARIANTS: [(&str, &str, &str, &str, &str); 1] = [(
+    "multibody",
+    "dynamic",
+    "with `[[body]]` sections (an array of tables; one `[body]` table is the one-body \
+     [`dynamic`](#dynamic) scene)",
+    "MultibodySceneFile",
+    "scene/multibody/format.rs",
+)];
 
 /// Keys no type of the solver declares: the solver reads the rod's `[exact]` as a free-form
 /// table (it does not use it), and the verification crate's `verify scene` reads its `solution`

@@ -31,9 +31,15 @@ pub fn render(models: &[ModelKeys]) -> String {
         ));
     }
     for m in models {
+        let (model, how) = m.selected_by.unwrap_or((m.model, ""));
+        let how = if how.is_empty() {
+            String::new()
+        } else {
+            format!(" {how}")
+        };
         s.push_str(&format!(
-            "\n## {}\n\n`model = \"{}\"`: the table is read into `{}` (`src/{}`).\n\n",
-            m.model, m.model, m.root, m.file
+            "\n## {}\n\n`model = \"{model}\"`{how}: the table is read into `{}` (`src/{}`).\n\n",
+            m.model, m.root, m.file
         ));
         s.push_str("| key | type | required / default | meaning |\n|---|---|---|---|\n");
         for r in &m.rows {
