@@ -92,13 +92,20 @@ pub struct StepReport {
 }
 
 /// The last Newton update, for the line search: the point it started from, the direction (already
-/// cut back for admissibility), and the merit ‖R‖₂ there.
+/// cut back for admissibility), and the merit ‖D⁻¹ R‖₂ there.
 struct LineState {
     d: Vec<f64>,
     delta: Vec<f64>,
     lambda: Vec<(f64, f64)>,
     dlambda: Vec<(f64, f64)>,
     merit: f64,
+    /// The scaled residual (in tolerances) where the update started: the search acts only far
+    /// from the round-off floor (above 100 tolerances), where ‖D⁻¹ R‖₂ measures progress; at the
+    /// floor it cannot decrease and halving would only spend iterations.
+    worst: f64,
+    /// The candidates' states where the update started: the merit is compared only when they did
+    /// not change (a change of the active set or of stick/slip changes the rows' definitions).
+    states: Vec<(bool, i8, usize)>,
     /// The fraction of the direction taken, and how often it was halved.
     step: f64,
     halvings: usize,
@@ -414,8 +421,9 @@ pub fn solve_step(
     let mut residuals: Vec<f64> = Vec::new();
     let mut unchanged = 0usize;
     let mut last = f64::INFINITY;
-    // the monotone line search on ‖R‖₂: the point and the Newton direction of the last update
+    // the monotone line search on ‖D⁻¹ R‖₂: the point and the Newton direction of the last update
     let mut line: Option<LineState> = None;
+    let mut merit_scales: Option<(f64, f64)> = None;
     // the predictor (k v_n for a dynamic step) cut back towards u_n while it would invert a body:
     // at a large step the velocities of a vibrating body carry elements through det F = 0
     for _ in 0..=params.max_backtracks {
@@ -501,6 +509,8 @@ pub fn solve_step(
         };
         let mut worst = 0.0f64;
         let mut bound_c = 0.0;
+        let mut rc2 = 0.0;
+        let mut x_all = 0.0f64;
         for (ci, cand) in candidates.iter_mut().enumerate() {
             let x1 = cand.positions(&ws.u1);
             let law = &data.laws[cand.pair];
@@ -513,14 +523,17 @@ pub fn solve_step(
             }
             let xmax = x1.amax();
             let tol_c = params.tolerance * s_u + 16.0 * f64::EPSILON * c * xmax;
+            x_all = x_all.max(xmax);
             if let Some(ln) = cand.ln {
                 ws.r[ln] = out.r_n;
                 worst = worst.max(out.r_n.abs() / tol_c);
+                rc2 += out.r_n * out.r_n;
                 bound_c += cand.lambda_n.abs() * out.r_n.abs() / c;
             }
             if let Some(lt) = cand.lt {
                 ws.r[lt] = out.r_t;
                 worst = worst.max(out.r_t.abs() / tol_c);
+                rc2 += out.r_t * out.r_t;
                 bound_c += cand.lambda_t.abs() * out.r_t.abs() / c;
             }
             sys.add_candidate(ci, &cand.dofs, &out.jac);
@@ -544,11 +557,25 @@ pub fn solve_step(
             });
         }
         worst = worst.max(r_u / (params.tolerance * s_u));
-        // the line search: a full Newton step that did not decrease ‖R‖₂ is halved (the
-        // residual is compared only between iterations without a switch: a switch changes it)
-        let merit = ws.r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        // the line search: a full Newton step that did not decrease the scaled ‖D⁻¹ R‖₂ is
+        // halved (D: the rows' tolerances at the step's first iteration, fixed in the step, so that every row's round-off weighs alike — the
+        // plain ‖R‖₂ of stiff bodies sits on the noise of their force rows while the other rows
+        // still converge; the Newton direction descends on any fixed row scaling). Compared
+        // only between iterations without a switch or a change of states (they change R).
+        let (w_u, w_c) = *merit_scales.get_or_insert_with(|| {
+            let w_u = params.tolerance * s_u;
+            (w_u, w_u + 16.0 * f64::EPSILON * c * x_all)
+        });
+        let merit = {
+            let ru2 = ws.r[..n].iter().map(|v| v * v).sum::<f64>();
+            (ru2 / (w_u * w_u) + rc2 / (w_c * w_c)).sqrt()
+        };
         if let Some(l) = &mut line {
-            if merit > (1.0 - 1e-4 * l.step) * l.merit && l.halvings < params.max_backtracks {
+            if l.worst > 100.0
+                && l.states == signature(candidates)
+                && merit > (1.0 - 1e-4 * l.step) * l.merit
+                && l.halvings < params.max_backtracks
+            {
                 l.step *= 0.5;
                 l.halvings += 1;
                 report.backtracks += 1;
@@ -695,6 +722,8 @@ pub fn solve_step(
                 })
                 .collect(),
             merit,
+            worst,
+            states: prev_sig.clone().unwrap_or_default(),
             step: 1.0,
             halvings: 0,
         };
