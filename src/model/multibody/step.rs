@@ -131,6 +131,12 @@ pub struct StepWorkspace {
     /// u − ū of a linear body (its range of the system vector), and K (d − d̄).
     shifted: Vec<f64>,
     force_increment: Vec<f64>,
+    /// Per linear body: |K| (the magnitudes of its stiffness values); and |u₀ − ū₀| + θ |d − d̄|
+    /// and |K| times it, the round-off scale of its force rows (the sum of the magnitudes of the
+    /// terms that K u adds up: |K u| alone misses the cancellation of a smooth deformation).
+    abs_stiffness: Vec<Option<Vec<f64>>>,
+    abs_state: Vec<f64>,
+    force_round_off: Vec<f64>,
     /// The constant part b of R_u = α M d + F − b.
     pub b: Vec<f64>,
     pub system: Option<StepSystem>,
@@ -197,6 +203,16 @@ impl StepWorkspace {
                 .collect(),
             shifted: vec![0.0; n],
             force_increment: vec![0.0; n],
+            abs_stiffness: bodies
+                .bodies()
+                .iter()
+                .map(|b| {
+                    b.linear_stiffness()
+                        .map(|kk| kk.iter().map(|v| v.abs()).collect())
+                })
+                .collect(),
+            abs_state: vec![0.0; n],
+            force_round_off: vec![0.0; n],
             b: vec![0.0; n],
             system: None,
             forms: InvariantForms::new(),
@@ -249,18 +265,32 @@ fn assemble_bodies(data: &StepData<'_>, d: &[f64], ws: &mut StepWorkspace, matri
             let theta = if midpoint_state { 0.5 } else { 1.0 };
             let shifted = &mut ws.shifted[rg.clone()];
             let dofs = &ws.translation_dofs[bi];
+            let abs_state = &mut ws.abs_state[rg.clone()];
             translated_out(u0, dofs, shifted);
             body.pattern().symmetric_mul(kk, shifted, f);
+            for (a, x) in abs_state.iter_mut().zip(shifted.iter()) {
+                *a = x.abs();
+            }
             translated_out(&d[rg.clone()], dofs, shifted);
             let fd = &mut ws.force_increment[rg.clone()];
             body.pattern().symmetric_mul(kk, shifted, fd);
             for (a, b) in f.iter_mut().zip(fd.iter()) {
                 *a += theta * b;
             }
+            for (a, x) in abs_state.iter_mut().zip(shifted.iter()) {
+                *a += theta * x.abs();
+            }
+            if let Some(abs_k) = &ws.abs_stiffness[bi] {
+                body.pattern()
+                    .symmetric_mul(abs_k, abs_state, &mut ws.force_round_off[rg.clone()]);
+            }
             if matrix {
                 ws.sym[bi].copy_from_slice(block);
             }
         } else {
+            ws.force_round_off[rg.clone()]
+                .iter_mut()
+                .for_each(|v| *v = 0.0);
             let ok = match scheme {
                 Some(MultibodyScheme::EnergyMomentum) => body.discrete_gradient_force(u0, u1, f),
                 Some(MultibodyScheme::Midpoint) => body.internal_force(um, f),
@@ -289,7 +319,7 @@ fn assemble_bodies(data: &StepData<'_>, d: &[f64], ws: &mut StepWorkspace, matri
     for i in 0..n {
         let inertia = alpha * ws.md[i];
         ws.r[i] = inertia + ws.force[i] - ws.b[i];
-        ws.scale[i] = inertia.abs() + ws.force[i].abs() + ws.b[i].abs();
+        ws.scale[i] = inertia.abs() + ws.force[i].abs().max(ws.force_round_off[i]) + ws.b[i].abs();
     }
     true
 }

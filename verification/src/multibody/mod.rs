@@ -10,7 +10,6 @@
 //! | `multibody_friction` | [`cases::friction`] | a block sliding on a larger block: deceleration set by μ and the load, momentum exact, dissipation = μ N × slip, the stick time's rate in k |
 //! | `multibody_impact` | [`cases::impact`] | two rings in oblique impact: EM's momenta and energy at round-off, the midpoint rule's energy error and blow-up, GCI of rebound and duration, work–precision |
 //! | `multibody_extremes` | [`cases::extremes`] | steps of several contact durations, speeds over three decades, grazing impact, a node sliding off the master's end, penalty → ∞ against multipliers |
-//! | `multibody_performance` | [`cases::performance`] | the cost of a two-body step against a one-body step of the same size, the search's share |
 //!
 //! [`study`] holds what every kind shares: building bodies from a case's numbers, running a
 //! problem with its step records, the audit's gates and plots; [`errors`] the measured
@@ -46,7 +45,6 @@ impl Family for Multibody {
             "multibody_friction",
             "multibody_impact",
             "multibody_extremes",
-            "multibody_performance",
         ]
     }
 
@@ -57,7 +55,6 @@ impl Family for Multibody {
             "multibody_friction" => cases::friction::check(case),
             "multibody_impact" => cases::impact::check(case),
             "multibody_extremes" => cases::extremes::check(case),
-            "multibody_performance" => cases::performance::check(case),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -69,7 +66,6 @@ impl Family for Multibody {
             "multibody_friction" => cases::friction::run(case, ctx, report),
             "multibody_impact" => cases::impact::run(case, ctx, report),
             "multibody_extremes" => cases::extremes::run(case, ctx, report),
-            "multibody_performance" => cases::performance::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

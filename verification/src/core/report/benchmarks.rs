@@ -22,10 +22,39 @@ pub struct Budget {
     pub why: String,
 }
 
+/// `[[ratio]]` of `benches/budgets.toml`: the mean of one benchmark over another's, at most `max`
+/// (a relative budget: both measured on the same machine in the same `cargo bench` run).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RatioBudget {
+    /// The criterion ids of the numerator and the denominator.
+    pub numerator: String,
+    pub denominator: String,
+    pub max: f64,
+    /// Where the figure comes from.
+    pub why: String,
+}
+
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BudgetFile {
     budget: Vec<Budget>,
+    #[serde(default)]
+    ratio: Vec<RatioBudget>,
+}
+
+/// One ratio budget's measurement.
+#[derive(Debug, Clone, Serialize)]
+pub struct RatioMeasurement {
+    pub numerator: String,
+    pub denominator: String,
+    /// mean(numerator) / mean(denominator), and its range from the two 95% intervals.
+    pub ratio: f64,
+    pub ratio_low: f64,
+    pub ratio_high: f64,
+    pub max: f64,
+    pub within_budget: bool,
+    pub why: String,
 }
 
 /// One benchmark's measurement.
@@ -47,6 +76,8 @@ pub struct Measurement {
 #[derive(Debug, Clone, Serialize)]
 pub struct BenchReport {
     pub measurements: Vec<Measurement>,
+    /// The ratio budgets whose two benchmarks were measured.
+    pub ratios: Vec<RatioMeasurement>,
     /// Budgets without a measurement.
     pub unmeasured: Vec<String>,
 }
@@ -59,6 +90,7 @@ impl BenchReport {
                 .measurements
                 .iter()
                 .all(|m| m.within_budget != Some(false))
+            && self.ratios.iter().all(|r| r.within_budget)
     }
 
     /// The Markdown page.
@@ -87,6 +119,30 @@ impl BenchReport {
         }
         for b in &self.unmeasured {
             s.push_str(&format!("| `{b}` | not measured | | | | **missing** |\n"));
+        }
+        if !self.ratios.is_empty() {
+            s.push_str(
+                "\n## Ratios\n\nMeans of one benchmark over another's (same run, same machine), \
+                 the range from the two 95% intervals.\n\n\
+                 | ratio | value | range | at most | | why |\n|---|---|---|---|---|---|\n",
+            );
+            for r in &self.ratios {
+                s.push_str(&format!(
+                    "| `{}` / `{}` | {:.3} | {:.3} – {:.3} | {} | {} | {} |\n",
+                    r.numerator,
+                    r.denominator,
+                    r.ratio,
+                    r.ratio_low,
+                    r.ratio_high,
+                    r.max,
+                    if r.within_budget {
+                        "within"
+                    } else {
+                        "**over**"
+                    },
+                    r.why
+                ));
+            }
         }
         s
     }
@@ -193,14 +249,48 @@ pub fn collect(budgets: &Path, criterion: &Path) -> Result<BenchReport, String> 
         });
     }
     measurements.sort_by(|a, b| a.bench.cmp(&b.bench));
-    let unmeasured = file
+    let find = |id: &str| measurements.iter().find(|m| m.bench == id);
+    let mut unmeasured: Vec<String> = file
         .budget
         .iter()
-        .filter(|b| !measurements.iter().any(|m| m.bench == b.bench))
+        .filter(|b| find(&b.bench).is_none())
         .map(|b| b.bench.clone())
         .collect();
+    let mut ratios = Vec::new();
+    for (i, r) in file.ratio.iter().enumerate() {
+        if !(r.max.is_finite() && r.max > 0.0) {
+            return Err(format!(
+                "{}: ratio[{i}].max = {}, expected a positive number",
+                budgets.display(),
+                r.max
+            ));
+        }
+        match (find(&r.numerator), find(&r.denominator)) {
+            (Some(a), Some(b)) => {
+                let ratio = a.mean_seconds / b.mean_seconds;
+                ratios.push(RatioMeasurement {
+                    numerator: r.numerator.clone(),
+                    denominator: r.denominator.clone(),
+                    ratio,
+                    ratio_low: a.mean_low_seconds / b.mean_high_seconds,
+                    ratio_high: a.mean_high_seconds / b.mean_low_seconds,
+                    max: r.max,
+                    within_budget: ratio <= r.max,
+                    why: r.why.clone(),
+                });
+            }
+            (a, b) => {
+                for (m, id) in [(a, &r.numerator), (b, &r.denominator)] {
+                    if m.is_none() && !unmeasured.contains(id) {
+                        unmeasured.push(id.clone());
+                    }
+                }
+            }
+        }
+    }
     Ok(BenchReport {
         measurements,
+        ratios,
         unmeasured,
     })
 }
@@ -254,6 +344,41 @@ mod tests {
         let r = collect(&budgets, &root).expect("reads");
         assert_eq!(r.unmeasured, vec!["c/none".to_string()]);
         assert!(!r.passed());
+        let _ = std::fs::remove_dir_all(&root);
+    }
+
+    #[test]
+    fn ratio_budgets_divide_the_means_and_fail_when_over_or_unmeasured() {
+        let root =
+            std::env::temp_dir().join(format!("contactlab-bench-ratio-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        bench(&root, "g/two", 3e6);
+        bench(&root, "g/one", 2e6);
+        let budgets = root.join("budgets.toml");
+        let write = |max: f64, denominator: &str| {
+            std::fs::write(
+                &budgets,
+                format!(
+                    "budget = []\n[[ratio]]\nnumerator = \"g/two\"\ndenominator = \"{denominator}\"\n\
+                     max = {max}\nwhy = \"w\"\n"
+                ),
+            )
+            .expect("write");
+        };
+        write(1.6, "g/one");
+        let r = collect(&budgets, &root).expect("reads");
+        assert_eq!(r.ratios.len(), 1);
+        assert!((r.ratios[0].ratio - 1.5).abs() < 1e-12);
+        assert!(r.passed());
+        assert!(r.markdown().contains("## Ratios"));
+        write(1.4, "g/one");
+        assert!(!collect(&budgets, &root).expect("reads").passed());
+        write(1.6, "g/missing");
+        let r = collect(&budgets, &root).expect("reads");
+        assert_eq!(r.unmeasured, vec!["g/missing".to_string()]);
+        assert!(!r.passed());
+        write(-1.0, "g/one");
+        assert!(collect(&budgets, &root).is_err());
         let _ = std::fs::remove_dir_all(&root);
     }
 }

@@ -5,4 +5,3 @@ pub mod extremes;
 pub mod friction;
 pub mod impact;
 pub mod patch;
-pub mod performance;
