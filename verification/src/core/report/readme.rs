@@ -7,8 +7,9 @@
 //! does the same, so a number in the README cannot drift from the reports.
 //!
 //! Blocks: `evidence` (per case: verdict, gates, the fitted rates grouped by expected rate),
-//! `benchmarks` (criterion's means against the budgets) and `tiers` (each tier's cases and their
-//! recorded time).
+//! `benchmarks` (criterion's means against the budgets, and the ratio budgets), `tiers` (each
+//! tier's cases and their recorded time) and `multibody_conservation` (the conservation table of
+//! `multibody_impact`).
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -197,6 +198,81 @@ pub fn benchmarks(reports: &Path) -> Result<String, String> {
             budget
         ));
     }
+    let ratios = b["ratios"].as_array().into_iter().flatten();
+    let mut first = true;
+    for r in ratios {
+        if first {
+            s.push_str(
+                "\n| ratio of means | value (range from the 95% intervals) | at most |\n|---|---|---|\n",
+            );
+            first = false;
+        }
+        let f = |k: &str| r[k].as_f64().unwrap_or(f64::NAN);
+        s.push_str(&format!(
+            "| `{}` / `{}` | {:.3} ({:.3} – {:.3}) | {} ({}) |\n",
+            r["numerator"].as_str().unwrap_or("?"),
+            r["denominator"].as_str().unwrap_or("?"),
+            f("ratio"),
+            f("ratio_low"),
+            f("ratio_high"),
+            f("max"),
+            if r["within_budget"].as_bool() == Some(true) {
+                "within"
+            } else {
+                "**over**"
+            }
+        ));
+    }
+    Ok(s)
+}
+
+/// The table of `case`'s report whose title starts with `title`, as Markdown, with the columns
+/// `columns` (by header) in that order.
+pub fn case_table(
+    reports: &Path,
+    case: &str,
+    title: &str,
+    columns: &[&str],
+) -> Result<String, String> {
+    let path = reports.join(format!("{case}.json"));
+    let r = read(&path)?;
+    let table = r["tables"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .find(|t| t["title"].as_str().is_some_and(|s| s.starts_with(title)))
+        .ok_or_else(|| format!("{}: no table titled `{title}…`", path.display()))?;
+    let header: Vec<&str> = table["header"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|h| h.as_str().unwrap_or(""))
+        .collect();
+    let index: Vec<usize> = columns
+        .iter()
+        .map(|c| {
+            header
+                .iter()
+                .position(|h| h == c)
+                .ok_or_else(|| format!("{}: table `{title}…` has no column `{c}`", path.display()))
+        })
+        .collect::<Result<_, _>>()?;
+    let mut s = format!(
+        "| {} |\n|{}\n",
+        columns.join(" | "),
+        "---|".repeat(columns.len())
+    );
+    for row in table["rows"].as_array().into_iter().flatten() {
+        let cells: Vec<String> = index
+            .iter()
+            .map(|&i| match &row[i] {
+                Value::String(t) => t.clone(),
+                Value::Null => "—".into(),
+                v => v.to_string(),
+            })
+            .collect();
+        s.push_str(&format!("| {} |\n", cells.join(" | ")));
+    }
     Ok(s)
 }
 
@@ -206,6 +282,27 @@ pub fn render(reports: &Path) -> Result<Blocks, String> {
     b.insert("evidence".into(), evidence(reports)?);
     b.insert("benchmarks".into(), benchmarks(reports)?);
     b.insert("tiers".into(), tiers(reports)?);
+    b.insert(
+        "multibody_conservation".into(),
+        case_table(
+            reports,
+            "multibody_impact",
+            "Runs at resolution 1",
+            &[
+                "run",
+                "μ",
+                "energy change / E_0",
+                "activation work / E_0",
+                "identity ratio",
+                "unchanged ratio",
+                "P ratio",
+                "J ratio",
+                "friction work / E_0",
+                "rebound ring 0",
+                "contact duration",
+            ],
+        )?,
+    );
     Ok(b)
 }
 

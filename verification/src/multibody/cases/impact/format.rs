@@ -129,7 +129,7 @@ impl ImpactCase {
         }
         for (i, r) in self.rings.iter().enumerate() {
             positive(p, &format!("ring[{i}].inner"), r.inner)?;
-            if !(r.outer > r.inner) {
+            if r.outer.partial_cmp(&r.inner) != Some(std::cmp::Ordering::Greater) {
                 return Err(invalid(p, &format!("ring[{i}].outer"), r.outer, "> inner"));
             }
             if r.radial == 0 || r.around < 3 {
@@ -162,7 +162,7 @@ impl ImpactCase {
                 return Err(invalid(p, "gci.factors", g.factors.len(), "≥ 3 levels"));
             }
             let r = g.factors[1] / g.factors[0];
-            if !(r > 1.0)
+            if r.partial_cmp(&1.0) != Some(std::cmp::Ordering::Greater)
                 || g.factors
                     .windows(2)
                     .any(|w| ((w[1] / w[0]) - r).abs() > 1e-12 * r)

@@ -211,8 +211,10 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         let mut job = first.job;
         job.steps = Some(first.steps);
         let s = runs::solver(&c, &job)?;
-        let mut params = contactlab::model::multibody::solver::MultibodyParams::default();
-        params.snapshot_times = times;
+        let params = contactlab::model::multibody::solver::MultibodyParams {
+            snapshot_times: times,
+            ..Default::default()
+        };
         let s =
             contactlab::model::multibody::solver::MultibodySolver::new(s.problem().clone(), params)
                 .map_err(|e| e.to_string())?;
