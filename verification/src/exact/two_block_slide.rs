@@ -201,7 +201,14 @@ impl TwoBlockSlide {
     pub fn discrete_velocities(&self, k: f64, n: usize) -> [f64; 2] {
         let stop = self.discrete_stop(k);
         if n <= stop.last_sliding_step {
-            return self.velocities(n as f64 * k);
+            // the constant force integrated exactly up to t_s, which may lie past t* (by less
+            // than k/2): not clamped at t* as the continuum's velocities are
+            let t = n as f64 * k;
+            let f = self.sigma() * self.friction_force();
+            return [
+                self.upper_speed - f * t / self.upper_mass,
+                self.lower_speed + f * t / self.lower_mass,
+            ];
         }
         // w alternates: −w(t_s) after the first sticking step, +w(t_s) after the next, …
         let sign = if (n - stop.last_sliding_step) % 2 == 1 {

@@ -108,7 +108,7 @@ pub fn tables(
         "slip_after_settling",
         "Newton it./step",
         "floor stops",
-        "s",
+        "CPU (s)",
     ]);
     report.tables.push(Table {
         title: "every level (errors defined in run.rs; the stop steps are n_s − 1)".into(),
