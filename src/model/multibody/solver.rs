@@ -640,9 +640,10 @@ impl MultibodySolver {
                 }
                 attempt += 1;
                 stats.search_retries += 1;
-                if attempt > 3 || report.releases > 0 {
-                    // released past a free master end in this step, then back inside the
-                    // segment and penetrating: a larger search finds the same candidates
+                if attempt > 3 {
+                    // when nodes were released past a free master end in this step, the
+                    // missed ones are usually those, back inside the segment and penetrating:
+                    // a larger search finds the same candidates
                     let reason = if report.releases > 0 {
                         format!(
                             "{missed} slave node(s) penetrate a master after {} node(s) were \
