@@ -30,9 +30,26 @@ use crate::model::multibody::invariants::{
 pub enum Enforcement {
     /// g ≥ 0, λ_N ≥ 0, λ_N g = 0 exactly (EM (19)–(21)).
     Lagrange,
-    /// The penalty force of P = (ε/2) (g₋)² (for comparison: it converges to the multipliers'
-    /// solution as ε → ∞).
+    /// The penalty force of P = (ε/2) (g₋)² (for comparison). Its energy is conserved by the
+    /// energy–momentum scheme (the secant force, [`PenaltyPotential::secant`]); it does not tend
+    /// to the multipliers' solution as ε → ∞ at a fixed step (the penalty adds a contact mode of
+    /// frequency √(ε/m), unresolved once ε k²/m ≫ 1; docs/multibody.md §3.1).
     Penalty { stiffness: f64 },
+    /// The compliant multiplier (perturbed Lagrangian): λ_N ≥ 0, g₁ + λ_N/ε ≥ 0,
+    /// λ_N (g₁ + λ_N/ε) = 0 — the penalty force ε (−g₁)₊ at the step's end carried by λ_N in the
+    /// scheme's force direction, a regular O(1/ε) perturbation of the multipliers' step, which
+    /// it tends to as ε → ∞.
+    Compliant { stiffness: f64 },
+}
+
+impl Enforcement {
+    /// 1/ε of the compliant multiplier, 0 for the exact multiplier (and the penalty).
+    pub fn compliance(&self) -> f64 {
+        match self {
+            Enforcement::Compliant { stiffness } => 1.0 / stiffness,
+            _ => 0.0,
+        }
+    }
 }
 
 /// The tangential state of a candidate in contact.
@@ -97,7 +114,10 @@ pub struct PairLaw {
 impl PairLaw {
     /// Whether a candidate of this law carries λ_N.
     pub fn has_normal_multiplier(&self) -> bool {
-        matches!(self.enforcement, Enforcement::Lagrange)
+        matches!(
+            self.enforcement,
+            Enforcement::Lagrange | Enforcement::Compliant { .. }
+        )
     }
 
     /// Whether it carries λ_T.
@@ -171,16 +191,31 @@ impl Candidate {
         let c = scale.c;
         match law.enforcement {
             Enforcement::Penalty { stiffness } => {
-                let p = PenaltyPotential { stiffness };
-                let d = direction(forms, &p, at, &self.x0, x1);
-                out.r_u += d.g;
-                out.jac.fixed_view_mut::<6, 6>(0, 0).add_assign(&d.dg);
-                let (g1, _) = value_and_gradient(forms, &Gap, x1);
+                let (g1, dg1) = value_and_gradient(forms, &Gap, x1);
                 self.active = g1 < 0.0;
+                if at == Evaluation::DiscreteGradient {
+                    // P ∘ g: the secant of P(g) = (ε/2)(g₋)² times the gap's discrete gradient,
+                    // s ∇̄g with s = (P(g₁) − P(g₀))/(g₁ − g₀) — exact work P(g₁) − P(g₀), no
+                    // resultant and no torque (∇̄g has neither), and C¹ in x₁ (s is)
+                    let g0 = Gap.value(&forms.invariants(&self.x0));
+                    let (s, ds) = PenaltyPotential { stiffness }.secant(g0, g1);
+                    let d = direction(forms, &Gap, at, &self.x0, x1);
+                    out.r_u += s * d.g;
+                    out.jac
+                        .fixed_view_mut::<6, 6>(0, 0)
+                        .add_assign(&(s * d.dg + ds * d.g * dg1.transpose()));
+                } else {
+                    let p = PenaltyPotential { stiffness };
+                    let d = direction(forms, &p, at, &self.x0, x1);
+                    out.r_u += d.g;
+                    out.jac.fixed_view_mut::<6, 6>(0, 0).add_assign(&d.dg);
+                }
                 return out;
             }
-            Enforcement::Lagrange => {}
+            Enforcement::Lagrange | Enforcement::Compliant { .. } => {}
         }
+        // the compliant row c (g₁ + λ_N/ε) (0 for the exact multiplier)
+        let compliance = law.enforcement.compliance();
         let d = direction(forms, &Gap, at, &self.x0, x1);
         out.r_u -= self.lambda_n * d.g;
         out.jac
@@ -193,13 +228,18 @@ impl Candidate {
         } else {
             0.0
         };
-        self.active = self.lambda_n - c * g1 >= band;
+        self.active = self.lambda_n - c * (g1 + compliance * self.lambda_n) >= band;
         if self.active {
-            out.r_n = c * g1;
+            out.r_n = c * (g1 + compliance * self.lambda_n);
             out.jac
                 .fixed_view_mut::<1, 6>(6, 0)
                 .copy_from(&(c * dg1.transpose()));
-            out.jac[(6, 6)] = -scale.regularization;
+            // the compliance c/ε keeps the matrix regular by itself; −δ for the exact multiplier
+            out.jac[(6, 6)] = if compliance > 0.0 {
+                c * compliance
+            } else {
+                -scale.regularization
+            };
         } else {
             out.r_n = self.lambda_n;
             out.jac[(6, 6)] = 1.0;
@@ -250,7 +290,7 @@ impl Candidate {
             Enforcement::Penalty { stiffness } => {
                 PenaltyPotential { stiffness }.value(&forms.invariants(x1))
             }
-            Enforcement::Lagrange => 0.0,
+            Enforcement::Lagrange | Enforcement::Compliant { .. } => 0.0,
         }
     }
 
@@ -328,13 +368,18 @@ mod tests {
     }
 
     fn check(law: PairLaw, z: [f64; 8], expect: Tangent) {
+        check_from(&candidate(), law, z, expect);
+    }
+
+    /// The Newton matrix of `base` at z = (x₁, λ) against central differences of its residual.
+    fn check_from(base: &Candidate, law: PairLaw, z: [f64; 8], expect: Tangent) {
         let forms = InvariantForms::new();
         for at in [
             Evaluation::End,
             Evaluation::Midpoint,
             Evaluation::DiscreteGradient,
         ] {
-            let mut c = candidate();
+            let mut c = base.clone();
             c.lambda_n = z[6];
             c.lambda_t = z[7];
             let x = Local6::from_column_slice(&z[..6]);
@@ -357,10 +402,7 @@ mod tests {
                 let (mut zp, mut zm) = (z, z);
                 zp[j] += h;
                 zm[j] -= h;
-                let (rp, rm) = (
-                    residual(&candidate(), &law, at, &zp),
-                    residual(&candidate(), &law, at, &zm),
-                );
+                let (rp, rm) = (residual(base, &law, at, &zp), residual(base, &law, at, &zm));
                 for i in 0..8 {
                     let fd = (rp[i] - rm[i]) / (2.0 * h);
                     assert!(
@@ -404,11 +446,65 @@ mod tests {
             enforcement: Enforcement::Penalty { stiffness: 40.0 },
             friction: 0.0,
         };
+        // entering (g₀ = 0.01 > 0 > g₁)
         check(
             penalty,
             [0.31, -0.003, 1.0, 0.001, 0.0, 0.0, 0.0, 0.0],
             Tangent::Free,
         );
+        // inside at both ends, and leaving (g₀ < 0 < g₁): the secant's other branches
+        let mut inside = candidate();
+        inside.x0[1] = -0.004;
+        check_from(
+            &inside,
+            penalty,
+            [0.31, -0.001, 1.0, 0.001, 0.0, 0.0, 0.0, 0.0],
+            Tangent::Free,
+        );
+        check_from(
+            &inside,
+            penalty,
+            [0.31, 0.002, 1.0, 0.001, 0.0, 0.0, 0.0, 0.0],
+            Tangent::Free,
+        );
+        // the compliant multiplier, with friction in stick
+        let compliant = PairLaw {
+            enforcement: Enforcement::Compliant { stiffness: 50.0 },
+            friction: 0.3,
+        };
+        check(
+            compliant,
+            [0.3002, -0.001, 1.0, 0.0001, 0.0, 0.0, 0.4, 0.05],
+            Tangent::Stick,
+        );
+    }
+
+    #[test]
+    fn compliant_row_holds_the_penetration_lambda_over_stiffness() {
+        // the row c (g₁ + λ/ε) vanishes at g₁ = −λ/ε: the penalty force ε (−g₁) carried by λ
+        let forms = InvariantForms::new();
+        let law = PairLaw {
+            enforcement: Enforcement::Compliant { stiffness: 200.0 },
+            friction: 0.0,
+        };
+        let mut c = candidate();
+        c.lambda_n = 0.4;
+        let x = Local6::from_column_slice(&[0.3, -0.4 / 200.0, 1.0, 0.0, 0.0, 0.0]);
+        let scale = RowScale {
+            c: 3.0,
+            regularization: 1e-12,
+            hysteresis: false,
+        };
+        let out = c.contribute(&forms, &law, Evaluation::End, &x, scale);
+        assert!(c.active);
+        assert!(out.r_n.abs() < 1e-15, "{}", out.r_n);
+        assert_eq!(out.jac[(6, 6)], 3.0 / 200.0);
+        // not compressed enough to hold λ: released
+        c.lambda_n = 0.0;
+        let open = Local6::from_column_slice(&[0.3, 1e-3, 1.0, 0.0, 0.0, 0.0]);
+        let out = c.contribute(&forms, &law, Evaluation::End, &open, scale);
+        assert!(!c.active);
+        assert_eq!(out.r_n, 0.0);
     }
 
     #[test]

@@ -173,6 +173,33 @@ impl InvariantFunction for PenaltyPotential {
     }
 }
 
+impl PenaltyPotential {
+    /// The secant s = (P(g₁) − P(g₀))/(g₁ − g₀) of P(g) = (ε/2)(g₋)² as a function of the gap,
+    /// and ∂s/∂g₁, written without the difference quotient (P is piecewise quadratic):
+    /// both gaps ≥ 0: s = 0; both ≤ 0: s = ε (g₀ + g₁)/2; entering (g₀ > 0 > g₁):
+    /// s = (ε/2) g₁²/(g₁ − g₀); leaving (g₀ < 0 < g₁): s = −(ε/2) g₀²/(g₁ − g₀). s is C¹ in g₁
+    /// (the slopes agree at g₁ = 0 and g₁ = g₀), so the penalty's Newton residual is C¹.
+    /// The energy–momentum penalty force is s ∇̄g (Armero & Petőcz's conserving penalty in
+    /// terms of the gap's discrete gradient; docs/multibody.md §3).
+    pub fn secant(&self, g0: f64, g1: f64) -> (f64, f64) {
+        let e = self.stiffness;
+        if g0 >= 0.0 && g1 >= 0.0 {
+            (0.0, 0.0)
+        } else if g0 <= 0.0 && g1 <= 0.0 {
+            (0.5 * e * (g0 + g1), 0.5 * e)
+        } else if g1 < 0.0 {
+            let d = g1 - g0;
+            (
+                0.5 * e * g1 * g1 / d,
+                0.5 * e * g1 * (g1 - 2.0 * g0) / (d * d),
+            )
+        } else {
+            let d = g1 - g0;
+            (-0.5 * e * g0 * g0 / d, 0.5 * e * g0 * g0 / (d * d))
+        }
+    }
+}
+
 /// The discrete gradient ∇̄f(π₀, π₁) of EM (67) and its derivative with respect to π₁.
 pub fn discrete_gradient(
     f: &impl InvariantFunction,
@@ -302,6 +329,44 @@ mod tests {
         let normal = [a[1] / len, -a[0] / len];
         assert!((g - (normal[0] * b[0] + normal[1] * b[1])).abs() < 1e-15);
         assert!(g > 0.0);
+    }
+
+    #[test]
+    fn penalty_secant_is_exact_work_and_continuously_differentiable() {
+        let p = PenaltyPotential { stiffness: 300.0 };
+        let energy = |g: f64| 0.5 * 300.0 * g.min(0.0).powi(2);
+        let cases = [
+            (0.02, -0.01),
+            (-0.01, 0.02),
+            (-0.03, -0.01),
+            (0.01, 0.03),
+            (0.0, -0.02),
+        ];
+        for (g0, g1) in cases {
+            let (s, ds) = p.secant(g0, g1);
+            let work = s * (g1 - g0);
+            let exact = energy(g1) - energy(g0);
+            assert!(
+                (work - exact).abs() < 1e-15 * (1.0 + exact.abs()),
+                "{g0} {g1}"
+            );
+            let h = 1e-7;
+            let fd = (p.secant(g0, g1 + h).0 - p.secant(g0, g1 - h).0) / (2.0 * h);
+            assert!(
+                (fd - ds).abs() < 1e-6 * (1.0 + ds.abs()),
+                "{g0} {g1}: {fd} vs {ds}"
+            );
+        }
+        // C¹ across g₁ = 0 from either side of g₀
+        for g0 in [0.02, -0.02] {
+            let (l, dl) = p.secant(g0, -1e-12);
+            let (r, dr) = p.secant(g0, 1e-12);
+            assert!((l - r).abs() < 1e-8, "{g0}: {l} vs {r}");
+            assert!(
+                (dl - dr).abs() < 1e-6 * (1.0 + dl.abs()),
+                "{g0}: {dl} vs {dr}"
+            );
+        }
     }
 
     fn check_derivatives(f: &impl InvariantFunction, p: Vector3<f64>) {

@@ -209,7 +209,9 @@ impl MultibodySolver {
         }
         for (p, pair) in problem.pairs.iter().enumerate() {
             let field = format!("contact_pair[{p}]");
-            if let Enforcement::Penalty { stiffness } = pair.law.enforcement {
+            if let Enforcement::Penalty { stiffness } | Enforcement::Compliant { stiffness } =
+                pair.law.enforcement
+            {
                 require_positive(&format!("{field}.enforcement.stiffness"), stiffness)?;
             }
             if !(pair.law.friction.is_finite() && pair.law.friction >= 0.0) {
@@ -224,7 +226,8 @@ impl MultibodySolver {
                 return Err(InputError::new(
                     format!("{field}.friction"),
                     pair.law.friction,
-                    "0 with penalty enforcement (friction needs enforcement = \"lagrange\")",
+                    "0 with penalty enforcement (friction needs a normal multiplier: enforcement = \
+                     \"lagrange\" or \"compliant\")",
                 )
                 .into());
             }
@@ -638,14 +641,29 @@ impl MultibodySolver {
                 attempt += 1;
                 stats.search_retries += 1;
                 if attempt > 3 {
+                    // when nodes were released past a free master end in this step, the
+                    // missed ones are usually those, back inside the segment and penetrating:
+                    // a larger search finds the same candidates
+                    let reason = if report.releases > 0 {
+                        format!(
+                            "{missed} slave node(s) penetrate a master after {} node(s) were \
+                             released past its free end in this step (a corner against a corner \
+                             whose end moves by more than the release tolerance) — a smaller \
+                             step, two-pass contact, or a master surface that extends beyond the \
+                             slave's",
+                            report.releases
+                        )
+                    } else {
+                        format!(
+                            "{missed} slave node(s) penetrate a master outside the contact \
+                             search even with a margin of {margin_extra:e} — the step is too \
+                             large for the bodies' speeds"
+                        )
+                    };
                     return Err(SolveError::NoEquilibrium {
                         step,
                         time: t,
-                        reason: format!(
-                            "{missed} slave node(s) penetrate a master outside the contact search \
-                             even with a margin of {margin_extra:e} — the step is too large for \
-                             the bodies' speeds"
-                        ),
+                        reason,
                     }
                     .into());
                 }

@@ -23,7 +23,9 @@ use crate::model::dynamic::body::ElasticBody;
 use crate::model::dynamic::newton::NewtonParams;
 use crate::model::multibody::bodies::BodySet;
 use crate::model::multibody::constraint::{Candidate, PairLaw, RowScale, Tangent};
-use crate::model::multibody::invariants::{Evaluation, InvariantForms, Local6};
+use crate::model::multibody::invariants::{
+    value_and_gradient, Evaluation, Gap, InvariantForms, Local6,
+};
 use crate::model::multibody::scheme::MultibodyScheme;
 use crate::model::multibody::surface::ContactSurface;
 use crate::model::multibody::system::{PatchDofs, StepSystem};
@@ -351,10 +353,13 @@ fn translated_out(u: &[f64], dofs: &[Option<Vec<usize>>; 2], out: &mut [f64]) {
 
 /// A hash of the candidates' states (active, stick/slip, segment): what must not change in the
 /// converged iteration, and what repeats when the active set cycles.
-fn signature(candidates: &[Candidate]) -> Vec<(bool, i8, usize)> {
+/// A penalty candidate's contact flag is left out: its force is C¹ across g = 0 (the residual's
+/// formula does not change), so Newton and the line search may cross it.
+fn signature(candidates: &[Candidate], laws: &[PairLaw]) -> Vec<(bool, i8, usize)> {
     candidates
         .iter()
         .map(|c| {
+            let active = c.active && laws[c.pair].has_normal_multiplier();
             let t = match c.tangent {
                 Tangent::Free => 0,
                 Tangent::Stick => 1,
@@ -366,9 +371,50 @@ fn signature(candidates: &[Candidate]) -> Vec<(bool, i8, usize)> {
                     }
                 }
             };
-            (c.active, t, c.segment.unwrap_or(usize::MAX))
+            (active, t, c.segment.unwrap_or(usize::MAX))
         })
         .collect()
+}
+
+/// The fraction of the Newton step δ to take when a penalty contact open at the iterate
+/// (g > 0 where the scheme evaluates its force: x₁, or x_{1/2} for the midpoint rule) would close
+/// along it. The linearized model on the open side has no penalty stiffness, so the full step
+/// lands as deep as the free motion (ε/M times the penalized penetration): the step stops at
+/// t* (g = 0 on the linearized path) plus 1 % of the rest, and Newton continues with the
+/// penalty's stiffness. 1 when no penalty contact closes.
+fn penalty_entry_step(
+    candidates: &[Candidate],
+    data: &StepData<'_>,
+    forms: &InvariantForms,
+    u1: &[f64],
+    delta: &[f64],
+) -> f64 {
+    let midpoint = data.kind.evaluation() == Evaluation::Midpoint;
+    let mut step = 1.0f64;
+    for c in candidates {
+        if data.laws[c.pair].has_normal_multiplier() {
+            continue;
+        }
+        let mut dx = Local6::zeros();
+        for (i, dof) in c.dofs.iter().enumerate() {
+            if let Some(dof) = dof {
+                dx[i] = delta[*dof];
+            }
+        }
+        let x1 = c.positions(u1);
+        let (x, dx) = if midpoint {
+            (0.5 * (c.x0 + x1), 0.5 * dx)
+        } else {
+            (x1, dx)
+        };
+        let (g, dg) = value_and_gradient(forms, &Gap, &x);
+        let g_full = g + dg.dot(&dx);
+        if g > 0.0 && g_full < 0.0 {
+            let t = g / (g - g_full);
+            step = step.min(t + 0.01 * (1.0 - t));
+        }
+    }
+    step
 }
 
 /// Re-pairs candidate `c` with segment `segment` of its master surface, at the start positions
@@ -602,7 +648,7 @@ pub fn solve_step(
         };
         if let Some(l) = &mut line {
             if l.worst > 100.0
-                && l.states == signature(candidates)
+                && l.states == signature(candidates, data.laws)
                 && merit > (1.0 - 1e-4 * l.step) * l.merit
                 && l.halvings < params.max_backtracks
             {
@@ -622,7 +668,7 @@ pub fn solve_step(
                 continue;
             }
         }
-        let sig = signature(candidates);
+        let sig = signature(candidates, data.laws);
         let same = prev_sig.as_ref() == Some(&sig);
         unchanged = if same { unchanged + 1 } else { 0 };
         residuals.push(worst);
@@ -717,8 +763,10 @@ pub fn solve_step(
         let solved = sys.solve(&mut delta);
         ws.system = Some(sys);
         solved?;
-        // cut back only where a body would be inverted
-        let mut step = 1.0;
+        // a penalty contact about to close: stop just past g = 0 (penalty_entry_step), then
+        // Newton continues on the stiff side; cut back further only where a body would be
+        // inverted
+        let mut step = penalty_entry_step(candidates, data, &ws.forms, &ws.u1, &delta);
         for _ in 0..=params.max_backtracks {
             for i in 0..n {
                 ws.trial[i] = d[i] + step * delta[i];

@@ -184,12 +184,14 @@ pub struct ContactPairSection {
     /// How g ≥ 0 is enforced (default `"lagrange"`).
     #[serde(default)]
     pub enforcement: EnforcementName,
-    /// ε > 0, the penalty stiffness: each slave node stores the energy (ε/2) (g₋)², g₋ =
-    /// max(−g, 0), and carries the force ε g₋ (force per unit gap; required with
-    /// `enforcement = "penalty"`, refused with `"lagrange"`).
+    /// ε > 0, the penalty stiffness: with `enforcement = "penalty"` each slave node stores the
+    /// energy (ε/2) (g₋)², g₋ = max(−g, 0), and carries the force ε g₋; with `"compliant"` the
+    /// multiplier satisfies λ_N = ε g₋ at the step's end (force per unit gap; required with
+    /// `"penalty"` and `"compliant"`, refused with `"lagrange"`).
     pub stiffness: Option<f64>,
     /// μ ≥ 0, Coulomb's friction coefficient of |λ_T| ≤ μ λ_N, stick or slip against the
-    /// motion (EM (22)–(23), the return map (50)–(52)); μ > 0 needs `enforcement = "lagrange"`
+    /// motion (EM (22)–(23), the return map (50)–(52)); μ > 0 needs a normal multiplier,
+    /// `enforcement = "lagrange"` or `"compliant"`
     /// (default 0: frictionless, no friction code runs).
     #[serde(default)]
     pub friction: f64,
@@ -243,9 +245,13 @@ pub enum EnforcementName {
     /// the default).
     #[default]
     Lagrange,
-    /// A penalty: the energy (ε/2) (g₋)² per slave node (`stiffness` ε), a penetration of order
-    /// λ_N / ε; it tends to the multipliers' solution as ε → ∞.
+    /// A penalty: the energy (ε/2) (g₋)² per slave node (`stiffness` ε), conserved by the
+    /// energy–momentum scheme; at a fixed step it does not tend to the multipliers' solution as
+    /// ε → ∞ (the contact mode √(ε/m) is not resolved: docs/multibody.md §3.1).
     Penalty,
+    /// A compliant multiplier: λ_N = ε g₋ at the step's end (`stiffness` ε), solved like the
+    /// multipliers; a penetration λ_N/ε, and the multipliers' solution plus O(1/ε).
+    Compliant,
 }
 
 /// `[time]`.

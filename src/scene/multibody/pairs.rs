@@ -85,7 +85,7 @@ fn law(p: usize, c: &ContactPairSection) -> Result<PairLaw, InputError> {
                 format!("{field}.stiffness"),
                 s,
                 "no stiffness with enforcement = \"lagrange\" (the multipliers need none; \
-                 enforcement = \"penalty\" takes one)",
+                 enforcement = \"penalty\" and \"compliant\" take one)",
             ))
         }
         (EnforcementName::Penalty, None) => {
@@ -97,13 +97,22 @@ fn law(p: usize, c: &ContactPairSection) -> Result<PairLaw, InputError> {
         (EnforcementName::Penalty, Some(s)) => Enforcement::Penalty {
             stiffness: require_positive(&format!("{field}.stiffness"), s)?,
         },
+        (EnforcementName::Compliant, None) => {
+            return Err(missing(
+                format!("{field}.stiffness"),
+                "the stiffness ε > 0 of enforcement = \"compliant\"",
+            ))
+        }
+        (EnforcementName::Compliant, Some(s)) => Enforcement::Compliant {
+            stiffness: require_positive(&format!("{field}.stiffness"), s)?,
+        },
     };
-    if c.friction > 0.0 && !matches!(enforcement, Enforcement::Lagrange) {
+    if c.friction > 0.0 && matches!(enforcement, Enforcement::Penalty { .. }) {
         return Err(InputError::new(
             format!("{field}.friction"),
             c.friction,
-            "0 with enforcement = \"penalty\" (friction needs enforcement = \"lagrange\": its \
-             stick and slip conditions are written in the normal multiplier)",
+            "0 with enforcement = \"penalty\" (friction needs a normal multiplier, enforcement = \
+             \"lagrange\" or \"compliant\": its stick and slip conditions are written in it)",
         ));
     }
     Ok(PairLaw {

@@ -169,6 +169,25 @@ fn names_default_to_the_position_and_penalty_takes_its_stiffness() {
 }
 
 #[test]
+fn compliant_takes_its_stiffness_and_keeps_friction() {
+    let text = BLOCKS.replace(
+        "friction = 0.2",
+        "friction = 0.2\nenforcement = \"compliant\"\nstiffness = 1e5",
+    );
+    let s = multibody(&text);
+    assert!(matches!(
+        s.problem.pairs[0].law.enforcement,
+        Enforcement::Compliant { stiffness } if stiffness == 1e5
+    ));
+    assert_eq!(s.problem.pairs[0].law.friction, 0.2);
+    // without its stiffness: refused, naming the key
+    refused(
+        &BLOCKS.replace("friction = 0.2", "enforcement = \"compliant\""),
+        &["stiffness"],
+    );
+}
+
+#[test]
 fn an_unknown_key_is_named() {
     refused(
         &BLOCKS.replace("density = 2.0", "density = 2.0\ncolour = \"red\""),

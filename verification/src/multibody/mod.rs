@@ -10,6 +10,7 @@
 //! | `multibody_friction` | [`cases::friction`] | a block sliding on a larger block: deceleration set by μ and the load, momentum exact, dissipation = μ N × slip, the stick time's rate in k |
 //! | `multibody_impact` | [`cases::impact`] | two rings in oblique impact: EM's momenta and energy at round-off, the midpoint rule's energy error and blow-up, GCI of rebound and duration, work–precision |
 //! | `multibody_extremes` | [`cases::extremes`] | steps of several contact durations and speeds over three decades (the penalty → ∞ study is written, not yet run: see docs/multibody.md §10) |
+//! | `multibody_sliding` | [`cases::sliding`] | grazing impact on the foundation over decades of v_n/v_t, and a block sliding off the master's free end (the release, loaded and unloaded) |
 //!
 //! [`study`] holds what every kind shares: building bodies from a case's numbers, running a
 //! problem with its step records, the audit's gates and plots; [`errors`] the measured
@@ -45,6 +46,7 @@ impl Family for Multibody {
             "multibody_friction",
             "multibody_impact",
             "multibody_extremes",
+            "multibody_sliding",
         ]
     }
 
@@ -55,6 +57,7 @@ impl Family for Multibody {
             "multibody_friction" => cases::friction::check(case),
             "multibody_impact" => cases::impact::check(case),
             "multibody_extremes" => cases::extremes::check(case),
+            "multibody_sliding" => cases::sliding::check(case),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -66,6 +69,7 @@ impl Family for Multibody {
             "multibody_friction" => cases::friction::run(case, ctx, report),
             "multibody_impact" => cases::impact::run(case, ctx, report),
             "multibody_extremes" => cases::extremes::run(case, ctx, report),
+            "multibody_sliding" => cases::sliding::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

@@ -5,3 +5,4 @@ pub mod extremes;
 pub mod friction;
 pub mod impact;
 pub mod patch;
+pub mod sliding;

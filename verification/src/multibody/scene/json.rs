@@ -114,6 +114,7 @@ pub fn pairs(scene: &MultibodyScene) -> Vec<PairOut> {
             enforcement: match p.law.enforcement {
                 Enforcement::Lagrange => "lagrange".into(),
                 Enforcement::Penalty { stiffness } => format!("penalty (ε = {stiffness})"),
+                Enforcement::Compliant { stiffness } => format!("compliant (ε = {stiffness})"),
             },
             friction: p.law.friction,
             slave_nodes: p.slave.nodes.clone(),

@@ -78,19 +78,36 @@ impl BarsSpec {
 }
 
 /// `[penalty]`: ε = factor × E (H/rows)/h (the axial stiffness of one element row's end, per
-/// slave node) against the Lagrange run of the same mesh and step.
+/// slave node) against the Lagrange run of the same mesh and step: the compliant multiplier at
+/// `factors` (the rate study) and the conserving penalty at `conserving.factors`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PenaltySpec {
+    /// The compliant multiplier's factors (λ_N = ε g₋ at t_(n+1)).
     pub factors: Vec<f64>,
     /// The scheme of the penalty and the Lagrange runs.
     #[serde(default = "energy_momentum")]
     pub scheme: MultibodyScheme,
-    /// The rate of |v_ε(T) − v_λ(T)|/v against 1/ε.
+    /// The rate of |v_ε(T) − v_λ(T)|/v against 1/ε (compliant multiplier).
     pub rate: RateCriteria,
-    /// |⟨Σ ε g₋⟩ / (A σ_c) − 1| on the plateau, at most this on every ε.
+    /// |⟨Σ ε g₋⟩ / (A σ_c) − 1| on the plateau, at most this on every ε (compliant multiplier).
     pub force_tolerance: f64,
     pub force_note: String,
+    /// The conserving penalty P = (ε/2)(g₋)².
+    pub conserving: Option<ConservingSpec>,
+}
+
+/// `[penalty.conserving]`: the energy–momentum scheme with the conserving penalty.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConservingSpec {
+    pub factors: Vec<f64>,
+    /// max_n |E_n − E_0| / E_0, E_0 = ρ L H v² from the setup, at most this.
+    pub energy_tolerance: f64,
+    /// The rate of the largest penetration against 1/ε (½: the contact nodes' kinetic energy
+    /// stored in the spring, g ≈ v_rel √(m/ε)).
+    pub penetration_rate: RateCriteria,
+    pub note: String,
 }
 
 /// `[speeds]`: the head-on bars at each speed (the gap ∝ v: the same onset).
@@ -188,6 +205,26 @@ impl ExtremesCase {
             }
             p.rate.check(path, "penalty.rate")?;
             positive(path, "penalty.force_tolerance", p.force_tolerance)?;
+            if let Some(c) = &p.conserving {
+                for (i, f) in c.factors.iter().enumerate() {
+                    positive(path, &format!("penalty.conserving.factors[{i}]"), *f)?;
+                }
+                positive(
+                    path,
+                    "penalty.conserving.energy_tolerance",
+                    c.energy_tolerance,
+                )?;
+                c.penetration_rate
+                    .check(path, "penalty.conserving.penetration_rate")?;
+                if c.factors.len() < 3 {
+                    return Err(invalid(
+                        path,
+                        "penalty.conserving.factors",
+                        c.factors.len(),
+                        "≥ 3",
+                    ));
+                }
+            }
         }
         if let Some(s) = &self.speeds {
             if s.speeds.is_empty() {

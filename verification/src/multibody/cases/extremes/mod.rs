@@ -37,9 +37,9 @@ pub fn check(case: &Case) -> Result<(), CaseError> {
 pub fn run(case: &Case, _ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
     let file = ExtremesCase::from_case(case).map_err(|e| e.to_string())?;
     if let Some(spec) = &file.penalty {
-        let (gates, table) = penalty::study(&file, spec)?;
+        let (gates, tables) = penalty::study(&file, spec)?;
         report.gates.extend(gates);
-        report.tables.push(table);
+        report.tables.extend(tables);
     }
     if let Some(spec) = &file.speeds {
         let (gates, table) = speeds::study(&file, spec)?;
