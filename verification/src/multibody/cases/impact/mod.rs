@@ -162,6 +162,17 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
                         s.unchanged_relative,
                         min,
                     ));
+                    // the negative control of the audit: its own unchanged-set check must flag
+                    // the scheme that does not conserve (a ratio above 1), or its tolerance is
+                    // blind (e.g. not the round-off it claims)
+                    checks.push(Check::at_least(
+                        &format!(
+                            "{}: the audit flags it (unchanged-set ratio > 1: drift over round-off)",
+                            r.name
+                        ),
+                        s.unchanged_ratio,
+                        1.0,
+                    ));
                 }
                 report.gates.push(audit_gate(
                     &format!("run {}", r.name),
