@@ -187,6 +187,12 @@ pub fn study(
                         drift,
                         c.energy_tolerance,
                     ));
+                    // the audit's own drift (from its first record) is the same number
+                    energy_checks.push(Check::at_most(
+                        &format!("{name}: |audit's energy drift − max_n |E_n − E_0| / E_0|"),
+                        (o.summary.energy_drift - drift).abs(),
+                        c.energy_tolerance,
+                    ));
                 }
                 conserving_inverse.push(1.0 / f);
                 penetrations.push(o.max_penetration());

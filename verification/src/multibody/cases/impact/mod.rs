@@ -173,6 +173,14 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
                         s.unchanged_ratio,
                         1.0,
                     ));
+                    checks.push(Check::at_least(
+                        &format!(
+                            "{}: the audit flags it (energy identity ratio > 1: the midpoint's internal force is not a discrete gradient)",
+                            r.name
+                        ),
+                        s.identity_ratio,
+                        1.0,
+                    ));
                 }
                 report.gates.push(audit_gate(
                     &format!("run {}", r.name),
