@@ -9,13 +9,15 @@
 //! | `multibody_patch` | [`cases::patch`] | the contact patch test (Taylor & Papadopoulos): two-pass passes to round-off, single-pass's failure measured |
 //! | `multibody_friction` | [`cases::friction`] | a block sliding on a larger block: deceleration set by μ and the load, momentum exact, dissipation = μ N × slip, the stick time's rate in k |
 //! | `multibody_impact` | [`cases::impact`] | two rings in oblique impact: EM's momenta and energy at round-off, the midpoint rule's energy error and blow-up, GCI of rebound and duration, work–precision |
-//! | `multibody_extremes` | [`cases::extremes`] | steps of several contact durations and speeds over three decades (the penalty → ∞ study is written, not yet run: see docs/multibody.md §10) |
+//! | `multibody_extremes` | [`cases::extremes`] | steps of several contact durations, speeds over three decades, penalty → ∞ against the multipliers (compliant and conserving penalties) |
 //! | `multibody_sliding` | [`cases::sliding`] | grazing impact on the foundation over decades of v_n/v_t, and a block sliding off the master's free end (the release, loaded and unloaded) |
 //!
 //! [`study`] holds what every kind shares: building bodies from a case's numbers, running a
 //! problem with its step records, the audit's gates and plots; [`errors`] the measured
-//! functionals (centre-of-mass velocities, contact intervals).
+//! functionals (centre-of-mass velocities, contact intervals); [`audit_reference`] the audit's
+//! own evidence (its summary from the definition, injected defects it must flag).
 
+pub mod audit_reference;
 pub mod cases;
 pub mod errors;
 pub mod scene;

@@ -32,6 +32,8 @@ pub struct ImpactCase {
     pub gci: Option<GciSpec>,
     /// The work–precision study.
     pub work_precision: Option<WorkPrecisionSpec>,
+    /// The audit's injected-defect controls on one run's records.
+    pub audit_control: Option<AuditControlSpec>,
     /// Draw the first run's rings at six times (a run of its own).
     #[serde(default)]
     pub snapshots: bool,
@@ -63,6 +65,16 @@ pub struct RunSpec {
     /// The midpoint rule's energy error in steps without a change of the active set must be at
     /// least this (relative to E_0): the scheme that does not conserve is seen not to.
     pub min_energy_error: Option<f64>,
+}
+
+/// `[audit_control]`: the records of the run `run` given, at their last step, a defect of
+/// `defect` tolerances in each audited quantity in turn (`crate::multibody::audit_reference`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AuditControlSpec {
+    pub run: String,
+    /// In units of the quantity's tolerance (> 1: the audit must flag it).
+    pub defect: f64,
 }
 
 /// `[large_step]`: the runs at `steps` steps over T (k large against the contact duration).
@@ -154,6 +166,24 @@ impl ImpactCase {
                     &format!("run[{i}].friction"),
                     r.friction,
                     "μ ≥ 0",
+                ));
+            }
+        }
+        if let Some(a) = &self.audit_control {
+            if !self.runs.iter().any(|r| r.name == a.run) {
+                return Err(invalid(
+                    p,
+                    "audit_control.run",
+                    &a.run,
+                    "the name of a [[run]]",
+                ));
+            }
+            if !(a.defect.is_finite() && a.defect > 1.0) {
+                return Err(invalid(
+                    p,
+                    "audit_control.defect",
+                    a.defect,
+                    "> 1 (a defect the audit must flag)",
                 ));
             }
         }

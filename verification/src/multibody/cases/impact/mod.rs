@@ -22,6 +22,7 @@ pub mod runs;
 
 use rayon::prelude::*;
 
+use contactlab::model::multibody::audit::summarize;
 use contactlab::model::multibody::scheme::MultibodyScheme;
 
 use crate::core::case::Case;
@@ -29,6 +30,7 @@ use crate::core::context::RunContext;
 use crate::core::format::CaseError;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::{CaseReport, Table, WorkPoint, WorkPrecisionReport};
+use crate::multibody::audit_reference::audit_controls;
 use crate::multibody::study::{audit_checks, audit_gate, plot_audits, AuditRun, Claims};
 use crate::stats::gci::{analyse, GciResult};
 use format::ImpactCase;
@@ -204,6 +206,9 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         .collect(),
         rows,
     });
+    if let Some(a) = &c.audit_control {
+        audit_control(a, &c, &find, report);
+    }
     let audit_runs: Vec<AuditRun<'_>> = shown
         .iter()
         .map(|(n, o)| AuditRun {
@@ -293,6 +298,42 @@ fn run_row(name: &str, o: &Outcome) -> Vec<String> {
         ),
         format!("{:.2}", o.cpu_seconds),
     ]
+}
+
+/// The audit's injected-defect controls (`crate::multibody::audit_reference`) on one run.
+fn audit_control<'a>(
+    a: &format::AuditControlSpec,
+    c: &ImpactCase,
+    find: &dyn Fn(&Job) -> &'a Result<Outcome, String>,
+    report: &mut CaseReport,
+) {
+    let Some(r) = c.runs.iter().find(|r| r.name == a.run) else {
+        return;
+    };
+    let job = Job {
+        scheme: r.scheme,
+        friction: r.friction,
+        factor: 1.0,
+        steps: None,
+    };
+    let (checks, table) = match find(&job) {
+        Err(e) => (
+            vec![Check::holds(
+                &format!("{}: {e}", r.name),
+                false,
+                "the run completes",
+            )],
+            None,
+        ),
+        Ok(o) => audit_controls(&r.name, &o.run.solution.records, summarize, a.defect),
+    };
+    report.gates.push(GateVerdict::from_checks(
+        format!("the audit's controls on run {}", r.name),
+        "negative control",
+        checks,
+        "the summary equals its definition written in the verification crate, and a defect of the given size in any audited quantity is flagged at that size (docs/multibody.md §8)",
+    ));
+    report.tables.extend(table);
 }
 
 fn large_step<'a>(
