@@ -108,6 +108,19 @@ pub struct ConservingSpec {
     /// stored in the spring, g ≈ v_rel √(m/ε)).
     pub penetration_rate: RateCriteria,
     pub note: String,
+    /// The same penalty with these schemes too (the force P′(g) ∇g at the scheme's evaluation
+    /// point: not a discrete gradient): the momenta gated as above, and the energy's failure.
+    #[serde(default)]
+    pub other_schemes: Vec<MultibodyScheme>,
+    /// Their factors (≥ 3 when `other_schemes` names any): the Newton iteration of a force with a
+    /// kink at g = 0 stops converging at a lower stiffness than the secant form's
+    /// (docs/multibody.md §10).
+    #[serde(default)]
+    pub other_factors: Vec<f64>,
+    /// Gate: each other scheme's largest E(T)/E_0 − 1 over its factors at least this (the energy
+    /// a force evaluated at a point puts into the contact: the failure the secant form removes).
+    #[serde(default)]
+    pub other_min_energy_gain: f64,
 }
 
 /// `[speeds]`: the head-on bars at each speed (the gap ∝ v: the same onset).
@@ -216,6 +229,32 @@ impl ExtremesCase {
                 )?;
                 c.penetration_rate
                     .check(path, "penalty.conserving.penetration_rate")?;
+                if !c.other_schemes.is_empty() && c.other_factors.len() < 3 {
+                    return Err(invalid(
+                        path,
+                        "penalty.conserving.other_factors",
+                        c.other_factors.len(),
+                        "≥ 3 (other_schemes is not empty)",
+                    ));
+                }
+                if !c.other_schemes.is_empty() {
+                    positive(
+                        path,
+                        "penalty.conserving.other_min_energy_gain",
+                        c.other_min_energy_gain,
+                    )?;
+                }
+                for (i, f) in c.other_factors.iter().enumerate() {
+                    positive(path, &format!("penalty.conserving.other_factors[{i}]"), *f)?;
+                }
+                if let Some(s) = c.other_schemes.iter().find(|&&s| s == p.scheme) {
+                    return Err(invalid(
+                        path,
+                        "penalty.conserving.other_schemes",
+                        s.name(),
+                        "schemes other than penalty.scheme",
+                    ));
+                }
                 if c.factors.len() < 3 {
                     return Err(invalid(
                         path,

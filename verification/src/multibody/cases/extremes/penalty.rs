@@ -27,6 +27,7 @@
 use rayon::prelude::*;
 
 use contactlab::model::multibody::constraint::Enforcement;
+use contactlab::model::multibody::scheme::MultibodyScheme;
 
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::Table;
@@ -42,26 +43,37 @@ pub fn stiffness(file: &ExtremesCase, f: f64) -> f64 {
     f * file.material.young * (b.height / b.rows as f64) / b.h()
 }
 
-/// The runs of the study: the Lagrange reference, the compliant multipliers, the conserving
-/// penalties (in this order).
-fn laws(file: &ExtremesCase, spec: &PenaltySpec) -> Vec<Enforcement> {
-    let mut laws = vec![Enforcement::Lagrange];
-    laws.extend(spec.factors.iter().map(|&f| Enforcement::Compliant {
+/// The runs of the study with their factors (∞ for the multipliers): the Lagrange reference, the
+/// compliant multipliers, the conserving penalties, then the penalty with each other scheme (in
+/// this order; `spec.scheme` unless named).
+fn runs(file: &ExtremesCase, spec: &PenaltySpec) -> Vec<(Enforcement, MultibodyScheme, f64)> {
+    let penalty = |f: f64| Enforcement::Penalty {
         stiffness: stiffness(file, f),
+    };
+    let mut runs = vec![(Enforcement::Lagrange, spec.scheme, f64::INFINITY)];
+    runs.extend(spec.factors.iter().map(|&f| {
+        let law = Enforcement::Compliant {
+            stiffness: stiffness(file, f),
+        };
+        (law, spec.scheme, f)
     }));
     if let Some(c) = &spec.conserving {
-        laws.extend(c.factors.iter().map(|&f| Enforcement::Penalty {
-            stiffness: stiffness(file, f),
-        }));
+        runs.extend(c.factors.iter().map(|&f| (penalty(f), spec.scheme, f)));
+        for &scheme in &c.other_schemes {
+            runs.extend(c.other_factors.iter().map(|&f| (penalty(f), scheme, f)));
+        }
     }
-    laws
+    runs
 }
 
-fn label(law: &Enforcement, f: f64) -> String {
+fn label(law: &Enforcement, scheme: MultibodyScheme, f: f64) -> String {
     match law {
         Enforcement::Lagrange => "Lagrange".into(),
         Enforcement::Compliant { .. } => format!("compliant f = {f:e}"),
-        Enforcement::Penalty { .. } => format!("conserving f = {f:e}"),
+        Enforcement::Penalty { .. } if scheme == MultibodyScheme::EnergyMomentum => {
+            format!("conserving f = {f:e}")
+        }
+        Enforcement::Penalty { .. } => format!("penalty ({}) f = {f:e}", scheme.name()),
     }
 }
 
@@ -71,20 +83,12 @@ pub fn study(
     spec: &PenaltySpec,
 ) -> Result<(Vec<GateVerdict>, Vec<Table>), String> {
     let v = file.bars.speed;
-    let laws = laws(file, spec);
-    let factors: Vec<f64> = std::iter::once(f64::INFINITY)
-        .chain(spec.factors.iter().copied())
-        .chain(
-            spec.conserving
-                .iter()
-                .flat_map(|c| c.factors.iter().copied()),
-        )
-        .collect();
-    let outcomes: Vec<(RunSpec, Result<Observed, String>)> = laws
+    let planned = runs(file, spec);
+    let outcomes: Vec<(RunSpec, Result<Observed, String>)> = planned
         .par_iter()
-        .map(|&law| {
+        .map(|&(law, scheme, _)| {
             let run = RunSpec {
-                scheme: spec.scheme,
+                scheme,
                 ..RunSpec::ordinary(file, v, law)
             };
             (run, build(file, &run).and_then(|s| observe(&s)))
@@ -97,7 +101,10 @@ pub fn study(
             Ok(o) => runs.push((run, o)),
             Err(e) if i == 0 => return Err(format!("penalty study, the Lagrange run: {e}")),
             Err(e) => failures.push(Check::holds(
-                &format!("{}: the run ends ({e})", label(&laws[i], factors[i])),
+                &format!(
+                    "{}: the run ends ({e})",
+                    label(&planned[i].0, planned[i].1, planned[i].2)
+                ),
                 false,
                 "completes",
             )),
@@ -146,16 +153,41 @@ pub fn study(
     let mut conserving_rows = compliant_rows.clone();
     let mut energy_checks = Vec::new();
     let (mut conserving_inverse, mut penetrations) = (Vec::new(), Vec::new());
+    // the penalty with the other schemes: per scheme, E(T)/E_0 − 1 at each factor and the rows
+    let mut others: Vec<(MultibodyScheme, Vec<f64>, Vec<Vec<String>>)> = Vec::new();
     for (i, (run, o)) in runs.iter().enumerate().skip(1) {
-        let f = factors[i];
+        let (law, scheme, f) = planned[i];
         let eps = stiffness(file, f);
-        let name = label(&laws[i], f);
+        let name = label(&law, scheme, f);
         let vt = o.final_velocities();
         let diff = (0..2)
             .map(|j| (vt[j] - reference[j]).abs() / v)
             .fold(0.0, f64::max);
         let r = row(&ctx, &format!("{f:e}"), eps, run.step, o);
-        match laws[i] {
+        match law {
+            Enforcement::Penalty { .. } if scheme != spec.scheme => {
+                // not a discrete gradient: the momenta are gated (a central pair force has no
+                // resultant), and the energy the force puts into the contact
+                audit.extend(audit_checks(
+                    &name,
+                    &o.summary,
+                    Claims {
+                        identity: false,
+                        unchanged: false,
+                        ..Claims::of(run.scheme, [true, true], false)
+                    },
+                ));
+                let at = match others.iter().position(|x| x.0 == scheme) {
+                    Some(at) => at,
+                    None => {
+                        others.push((scheme, Vec::new(), Vec::new()));
+                        others.len() - 1
+                    }
+                };
+                let et = o.solution.records.last().map_or(f64::NAN, |x| x.energy);
+                others[at].1.push(et / e0 - 1.0);
+                others[at].2.push(r);
+            }
             Enforcement::Compliant { .. } => {
                 inverse.push(1.0 / f);
                 differences.push(diff);
@@ -223,6 +255,7 @@ pub fn study(
     if let Some(ConservingSpec {
         note,
         penetration_rate,
+        other_min_energy_gain,
         ..
     }) = &spec.conserving
     {
@@ -233,6 +266,31 @@ pub fn study(
             &conserving_inverse,
             &penetrations,
         ));
+        if !others.is_empty() {
+            let checks = others
+                .iter()
+                .map(|(scheme, gains, _)| {
+                    Check::at_least(
+                        &format!(
+                            "{}: max over ε of E(T)/E_0 − 1 (E_0 = ρ L H v² from the setup)",
+                            scheme.name()
+                        ),
+                        gains.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                        *other_min_energy_gain,
+                    )
+                })
+                .collect();
+            gates.push(GateVerdict::from_checks(
+                "the penalty force at a point (midpoint, Newmark) gains energy at the contact"
+                    .into(),
+                "extreme",
+                checks,
+                "P′(g) ∇g evaluated at x_(n+½) or x_(n+1) is not a discrete gradient of P: a node \
+                 can cross deep into the spring within a step the force does not see, and leave \
+                 it pushed by the full spring — the energy grows with ε (EM §1's motivation); the \
+                 secant form conserves it (the gate above)",
+            ));
+        }
         gates.push(GateVerdict::from_checks(
             "conserving penalty: E_n = E_0 = ρ L H v² at every step (no activation loss)".into(),
             "identity",
@@ -275,6 +333,19 @@ pub fn study(
             ),
             header,
             rows: conserving_rows,
+        });
+    }
+    for (scheme, _, rows) in others {
+        let mut all = vec![tables[0].rows[0].clone()];
+        all.extend(rows);
+        tables.push(Table {
+            title: format!(
+                "penalty → ∞, P = (ε/2)(g₋)² with the {} scheme (the force P′(g) ∇g at its \
+                 evaluation point: E not conserved; E_0 = {e0:.6e})",
+                scheme.name()
+            ),
+            header: tables[0].header.clone(),
+            rows: all,
         });
     }
     Ok((gates, tables))
