@@ -326,6 +326,10 @@ impl MultibodySolver {
                         c.was_active = prev.active;
                         c.active = prev.active;
                         c.tangent = prev.tangent;
+                    } else if !pair.law.has_normal_multiplier() && prev.segment.is_some() {
+                        // a penalty node the search moved to another segment: its P is now
+                        // measured from another line (the works' redefinition jump)
+                        c.switched = true;
                     }
                 }
             };
@@ -705,7 +709,7 @@ impl MultibodySolver {
                 d.iter().zip(&f_now).map(|(x, y)| x * y).sum::<f64>()
             };
             let mut rec = self.record(step, t, &u, &v, &candidates, &mut mv, &forms);
-            self.works(&mut rec, &prev, &candidates, w_ext, &report);
+            self.works(&mut rec, &prev, &candidates, w_ext, &report, &forms);
             if let Some((quantity, value)) = rec.first_non_finite() {
                 return Err(SolveError::NonFinite {
                     step,
@@ -834,9 +838,33 @@ impl MultibodySolver {
         candidates: &[Candidate],
         external_work: f64,
         report: &StepReport,
+        forms: &InvariantForms,
     ) {
         let mut scale = rec.kinetic.abs() + rec.stored.abs() + rec.penalty.abs();
         scale += prev.kinetic.abs() + prev.stored.abs() + prev.penalty.abs() + external_work.abs();
+        // the penalty's redefinition: a node whose master segment changed (at the search or in
+        // the step) has its P measured from the new segment's line, and the NTS gap is not
+        // continuous across a master vertex — P_new(x₀) − P_old(x₀) enters the energy without a
+        // force doing it (the step's secant force conserves K + U + P_new exactly); it is the
+        // step's switch work, Σ_c P_c(x₀) − (the last record's P) (docs/multibody.md §3.1)
+        let penalty_switches = candidates
+            .iter()
+            .filter(|c| c.switched && !self.problem.pairs[c.pair].law.has_normal_multiplier())
+            .count();
+        if penalty_switches > 0 {
+            let start: f64 = candidates
+                .iter()
+                .map(|c| c.penalty_energy(forms, &self.problem.pairs[c.pair].law, &c.x0))
+                .sum();
+            let w = start - prev.penalty;
+            rec.normal_work += w;
+            rec.switch_work += w;
+            // a switch that moves no P (the node outside both lines) changes nothing
+            if w != 0.0 {
+                rec.switches += penalty_switches;
+            }
+            scale += start.abs();
+        }
         for c in candidates {
             if self.problem.pairs[c.pair].law.has_normal_multiplier() {
                 let w = c.lambda_n * (c.g1 - c.g0);

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use contactlab::model::multibody::scheme::MultibodyScheme;
 
 use crate::core::format::{invalid, positive, CaseError};
+use crate::multibody::cases::impact::runs::Job;
 use crate::multibody::study::MaterialSpec;
 
 /// The case body of `multibody_impact`.
@@ -54,6 +55,19 @@ pub struct RingSpec {
     pub angular_velocity: f64,
 }
 
+impl RingSpec {
+    /// The ring with every length and velocity times `s`.
+    pub fn at_size(&self, s: f64) -> Self {
+        Self {
+            center: self.center.map(|x| s * x),
+            inner: s * self.inner,
+            outer: s * self.outer,
+            velocity: self.velocity.map(|x| s * x),
+            ..*self
+        }
+    }
+}
+
 /// `[[run]]`: a scheme and a friction coefficient at resolution 1.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -65,6 +79,36 @@ pub struct RunSpec {
     /// The midpoint rule's energy error in steps without a change of the active set must be at
     /// least this (relative to E_0): the scheme that does not conserve is seen not to.
     pub min_energy_error: Option<f64>,
+    /// The conserving penalty P = (ε/2)(g₋)² with this ε per slave node instead of the
+    /// multipliers (frictionless only).
+    pub penalty: Option<f64>,
+    /// Gate: max_n |E_n − E_0 − Σ_{j≤n} (switch work)_j| / E_0 at most this (the conserving
+    /// penalty with the energy–momentum scheme: no activation loss, E = K + U + P conserved in
+    /// every step but where a penetrated node changes master segment and its P is measured
+    /// from another line).
+    pub max_other_energy_change: Option<f64>,
+    /// The similar problem at this size s: every length and velocity times s, the modulus and
+    /// the penalty's ε times s² (angular velocities, times, strains and E_n/E_0 unchanged;
+    /// `runs::Job::size`). Default 1.
+    pub size: Option<f64>,
+    /// With `size`: the run at size 1 this one must reproduce — rebound velocities / s, the
+    /// contact duration and (E_N − E_0)/E_0 within `similarity_tolerance` (relative).
+    pub similar_to: Option<String>,
+    pub similarity_tolerance: Option<f64>,
+}
+
+impl RunSpec {
+    /// The run's job at resolution 1.
+    pub fn job(&self) -> Job {
+        Job {
+            scheme: self.scheme,
+            friction: self.friction,
+            factor: 1.0,
+            steps: None,
+            penalty: self.penalty,
+            size: self.size.unwrap_or(1.0),
+        }
+    }
 }
 
 /// `[audit_control]`: the records of the run `run` given, at their last step, a defect of
@@ -167,6 +211,55 @@ impl ImpactCase {
                     r.friction,
                     "μ ≥ 0",
                 ));
+            }
+            if let Some(e) = r.penalty {
+                if !(e.is_finite() && e > 0.0) {
+                    return Err(invalid(p, &format!("run[{i}].penalty"), e, "ε > 0"));
+                }
+                if r.friction != 0.0 {
+                    return Err(invalid(
+                        p,
+                        &format!("run[{i}].friction"),
+                        r.friction,
+                        "0 with a penalty (friction needs a normal multiplier)",
+                    ));
+                }
+            }
+            if let Some(s) = r.size {
+                positive(p, &format!("run[{i}].size"), s)?;
+                let reference = r
+                    .similar_to
+                    .as_ref()
+                    .and_then(|n| self.runs.iter().find(|x| &x.name == n));
+                match reference {
+                    Some(x)
+                        if x.size.unwrap_or(1.0) == 1.0
+                            && x.scheme == r.scheme
+                            && x.friction == r.friction
+                            && x.penalty == r.penalty => {}
+                    _ => {
+                        return Err(invalid(
+                            p,
+                            &format!("run[{i}].similar_to"),
+                            format!("{:?}", r.similar_to),
+                            "the name of a [[run]] at size 1 with the same scheme, friction and penalty",
+                        ))
+                    }
+                }
+                match r.similarity_tolerance {
+                    Some(t) => positive(p, &format!("run[{i}].similarity_tolerance"), t)?,
+                    None => {
+                        return Err(invalid(
+                            p,
+                            &format!("run[{i}].similarity_tolerance"),
+                            "(missing)",
+                            "a relative tolerance with `size`",
+                        ))
+                    }
+                }
+            }
+            if let Some(m) = r.max_other_energy_change {
+                positive(p, &format!("run[{i}].max_other_energy_change"), m)?;
             }
         }
         if let Some(a) = &self.audit_control {

@@ -9,6 +9,11 @@
 //!   P and J for every midpoint-type run (free rings, objective law), friction's sign always;
 //! - the midpoint rule's energy error in steps without a change of the active set at least
 //!   `min_energy_error` E_0 (it does not conserve, and this is seen);
+//! - a run with the conserving penalty P = (ε/2)(g₋)²: max_n |E_n − E_0 − Σ switch work| / E_0
+//!   at most `max_other_energy_change` (the secant force conserves E = K + U + P in every step
+//!   but where a penetrated node's master segment changes; the rings'
+//!   segments stretch while penetrated, so the discrete gradient of the gap in the invariants is
+//!   exercised where the midpoint gradient would differ);
 //! - every run separates before T (rebound velocities and contact duration are defined);
 //! - at a large step: the energy–momentum run completes and its energy changes only by the
 //!   activation and switch work (plus `max_other_energy_change` E_0); the midpoint run stops with a
@@ -51,12 +56,7 @@ fn jobs(c: &ImpactCase) -> Vec<Job> {
         }
     };
     for r in &c.runs {
-        push(Job {
-            scheme: r.scheme,
-            friction: r.friction,
-            factor: 1.0,
-            steps: None,
-        });
+        push(r.job());
     }
     if let Some(l) = &c.large_step {
         for scheme in [MultibodyScheme::EnergyMomentum, MultibodyScheme::Midpoint] {
@@ -65,6 +65,8 @@ fn jobs(c: &ImpactCase) -> Vec<Job> {
                 friction: 0.0,
                 factor: 1.0,
                 steps: Some(l.steps),
+                penalty: None,
+                size: 1.0,
             });
         }
     }
@@ -75,6 +77,8 @@ fn jobs(c: &ImpactCase) -> Vec<Job> {
                 friction: 0.0,
                 factor: f,
                 steps: None,
+                penalty: None,
+                size: 1.0,
             });
         }
     }
@@ -86,6 +90,8 @@ fn jobs(c: &ImpactCase) -> Vec<Job> {
                     friction: 0.0,
                     factor: f,
                     steps: None,
+                    penalty: None,
+                    size: 1.0,
                 });
             }
         }
@@ -95,6 +101,12 @@ fn jobs(c: &ImpactCase) -> Vec<Job> {
 
 fn label(job: &Job) -> String {
     let mut s = format!("{} μ = {}", job.scheme.name(), job.friction);
+    if let Some(e) = job.penalty {
+        s.push_str(&format!(" penalty ε = {e:e}"));
+    }
+    if job.size != 1.0 {
+        s.push_str(&format!(" size {}", job.size));
+    }
     if job.factor != 1.0 {
         s.push_str(&format!(" ×{}", job.factor));
     }
@@ -128,12 +140,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
     let mut rows = Vec::new();
     let mut shown: Vec<(String, &Outcome)> = Vec::new();
     for r in &c.runs {
-        let job = Job {
-            scheme: r.scheme,
-            friction: r.friction,
-            factor: 1.0,
-            steps: None,
-        };
+        let job = r.job();
         let name = format!("{} ({})", r.name, label(&job));
         match find(&job) {
             Err(e) => report.gates.push(GateVerdict::from_checks(
@@ -155,6 +162,30 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
                     o.quantities.separated,
                     "separated",
                 ));
+                if let Some(max) = r.max_other_energy_change {
+                    let records = &o.run.solution.records;
+                    let e0 = records.first().map_or(f64::NAN, |x| x.energy);
+                    let mut switched = 0.0;
+                    let mut other: f64 = 0.0;
+                    for x in records {
+                        switched += x.switch_work;
+                        other = other.max((x.energy - e0 - switched).abs() / e0);
+                    }
+                    checks.push(Check::at_most(
+                        &format!(
+                            "{}: max_n |E_n − E_0 − Σ switch work| / E_0 (E = K + U + P: no activation loss; Σ switch work = {:.3e} E_0)",
+                            r.name,
+                            switched / e0
+                        ),
+                        other,
+                        max,
+                    ));
+                }
+                if let (Some(size), Some(reference), Some(tol)) =
+                    (r.size, &r.similar_to, r.similarity_tolerance)
+                {
+                    checks.extend(similarity(&c, &r.name, size, reference, tol, o, &find));
+                }
                 if let Some(min) = r.min_energy_error {
                     checks.push(Check::at_least(
                         &format!(
@@ -264,6 +295,71 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
     Ok(())
 }
 
+/// The similarity gate: the run at size s against the run `reference` at size 1 — each ring's
+/// rebound velocity / s, the contact duration and (E_N − E_0)/E_0, relative differences at most
+/// `tol` (every equation of the problem is invariant under x → s x, v → s v, E → s² E,
+/// ε → s² ε at fixed ρ and t; what differs is the rounding, and any tolerance or guard of the
+/// solver with a length scale of its own).
+fn similarity<'a>(
+    c: &ImpactCase,
+    name: &str,
+    size: f64,
+    reference: &str,
+    tol: f64,
+    o: &Outcome,
+    find: &dyn Fn(&Job) -> &'a Result<Outcome, String>,
+) -> Vec<Check> {
+    let Some(spec) = c.runs.iter().find(|x| x.name == reference) else {
+        return Vec::new();
+    };
+    let base = match find(&spec.job()) {
+        Ok(b) => b,
+        Err(e) => {
+            return vec![Check::holds(
+                &format!("{name}: its size-1 run {reference} failed ({e})"),
+                false,
+                "completes",
+            )]
+        }
+    };
+    let (q, q1) = (&o.quantities, &base.quantities);
+    let speed = q1
+        .rebound
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let velocity = (0..2)
+        .flat_map(|b| (0..2).map(move |i| (b, i)))
+        .map(|(b, i)| (q.rebound[b][i] / size - q1.rebound[b][i]).abs() / speed)
+        .fold(0.0f64, f64::max);
+    let change = |r: &[contactlab::model::multibody::audit::MultibodyRecord]| {
+        let e0 = r.first().map_or(f64::NAN, |x| x.energy);
+        r.last().map_or(f64::NAN, |x| (x.energy - e0) / e0)
+    };
+    let energy = (change(&o.run.solution.records) - change(&base.run.solution.records)).abs();
+    let duration = match (q.contact_duration, q1.contact_duration) {
+        (Some(a), Some(b)) => (a - b).abs() / b,
+        _ => f64::INFINITY,
+    };
+    vec![
+        Check::at_most(
+            &format!("{name} (size {size}) against {reference}: max |v_s/s − v_1| / max |v_1| (rebound velocities)"),
+            velocity,
+            tol,
+        ),
+        Check::at_most(
+            &format!("{name} (size {size}) against {reference}: |ΔE/E_0 (size s) − ΔE/E_0 (size 1)|"),
+            energy,
+            tol,
+        ),
+        Check::at_most(
+            &format!("{name} (size {size}) against {reference}: relative difference of the contact durations"),
+            duration,
+            tol,
+        ),
+    ]
+}
+
 fn fmt_v(v: [f64; 2]) -> String {
     format!("({:.5}, {:.5})", v[0], v[1])
 }
@@ -310,12 +406,7 @@ fn audit_control<'a>(
     let Some(r) = c.runs.iter().find(|r| r.name == a.run) else {
         return;
     };
-    let job = Job {
-        scheme: r.scheme,
-        friction: r.friction,
-        factor: 1.0,
-        steps: None,
-    };
+    let job = r.job();
     let (checks, table) = match find(&job) {
         Err(e) => (
             vec![Check::holds(
@@ -347,12 +438,16 @@ fn large_step<'a>(
         friction: 0.0,
         factor: 1.0,
         steps: Some(l.steps),
+        penalty: None,
+        size: 1.0,
     });
     let mp = find(&Job {
         scheme: MultibodyScheme::Midpoint,
         friction: 0.0,
         factor: 1.0,
         steps: Some(l.steps),
+        penalty: None,
+        size: 1.0,
     });
     let k = c.final_time / l.steps as f64;
     let mut checks = Vec::new();
@@ -473,6 +568,8 @@ fn gci<'a>(
                 friction: 0.0,
                 factor: f,
                 steps: None,
+                penalty: None,
+                size: 1.0,
             })
             .as_ref()
             .map_err(|e| format!("GCI level ×{f}: {e}"))
@@ -596,6 +693,8 @@ fn work_precision<'a>(
                 friction: 0.0,
                 factor: f,
                 steps: None,
+                penalty: None,
+                size: 1.0,
             };
             match find(&job) {
                 Ok(o) => {

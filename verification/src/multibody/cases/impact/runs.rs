@@ -31,6 +31,13 @@ pub struct Job {
     pub factor: f64,
     /// The steps over T (None: the case's steps times the factor).
     pub steps: Option<usize>,
+    /// The conserving penalty's stiffness ε per slave node (None: Lagrange multipliers).
+    pub penalty: Option<f64>,
+    /// The similar problem at size s: every length and velocity times s, the modulus and the
+    /// penalty's ε times s² (so the wave speed is s c and every time, strain and E_n/E_0 is the
+    /// same; the rebound velocities are s times). A check that no tolerance or guard of the
+    /// solver carries a length scale of its own.
+    pub size: f64,
 }
 
 /// The reported quantities of a run.
@@ -66,7 +73,10 @@ fn scaled(n: usize, factor: f64) -> usize {
     ((n as f64 * factor).round() as usize).max(1)
 }
 
-fn ring(c: &ImpactCase, r: &RingSpec, factor: f64) -> Result<Arc<PlaneBody>, String> {
+/// A ring's body; at `size` s the modulus is E s² (the similarity of `Job::size`).
+fn ring(c: &ImpactCase, r: &RingSpec, factor: f64, size: f64) -> Result<Arc<PlaneBody>, String> {
+    let mut material = c.material;
+    material.young *= size * size;
     let mesh = annulus(
         r.center,
         r.inner,
@@ -78,7 +88,7 @@ fn ring(c: &ImpactCase, r: &RingSpec, factor: f64) -> Result<Arc<PlaneBody>, Str
     let body = PlaneBody::new(PlaneBodyData {
         mesh,
         density: c.density,
-        law: c.material.law()?,
+        law: material.law()?,
         dirichlet: vec![],
         traction: vec![],
         body_force: [Field::Constant(0.0), Field::Constant(0.0)],
@@ -98,20 +108,21 @@ fn outer(r: &RingSpec) -> BoundarySelector {
 }
 
 /// The solver of a job: ring 0's outer boundary (slave) against ring 1's (master), single pass,
-/// Lagrange multipliers.
+/// Lagrange multipliers or the conserving penalty.
 pub fn solver(c: &ImpactCase, job: &Job) -> Result<MultibodySolver, String> {
+    let rings = [c.rings[0].at_size(job.size), c.rings[1].at_size(job.size)];
     let bodies = BodySet::new(vec![
-        ring(c, &c.rings[0], job.factor)?,
-        ring(c, &c.rings[1], job.factor)?,
+        ring(c, &rings[0], job.factor, job.size)?,
+        ring(c, &rings[1], job.factor, job.size)?,
     ])
     .map_err(|e| e.to_string())?;
-    let slave = ContactSurface::new(0, bodies.body(0), &outer(&c.rings[0]), "ring[0]")
+    let slave = ContactSurface::new(0, bodies.body(0), &outer(&rings[0]), "ring[0]")
         .map_err(|e| e.to_string())?;
-    let master = ContactSurface::new(1, bodies.body(1), &outer(&c.rings[1]), "ring[1]")
+    let master = ContactSurface::new(1, bodies.body(1), &outer(&rings[1]), "ring[1]")
         .map_err(|e| e.to_string())?;
     let n = bodies.dofs();
     let mut v = vec![0.0; n];
-    for (b, r) in c.rings.iter().enumerate() {
+    for (b, r) in rings.iter().enumerate() {
         let centre = bodies.centre_of_mass(b);
         bodies.rigid_velocity(b, r.velocity, r.angular_velocity, centre, &mut v);
     }
@@ -123,7 +134,11 @@ pub fn solver(c: &ImpactCase, job: &Job) -> Result<MultibodySolver, String> {
                 slave,
                 master: PairMaster::Surface(master),
                 law: PairLaw {
-                    enforcement: Enforcement::Lagrange,
+                    enforcement: job.penalty.map_or(Enforcement::Lagrange, |e| {
+                        Enforcement::Penalty {
+                            stiffness: e * job.size * job.size,
+                        }
+                    }),
                     friction: job.friction,
                 },
             }],
