@@ -44,11 +44,11 @@ pub struct MultibodyRecord {
     pub energy: f64,
     pub momentum: [f64; 2],
     pub angular_momentum: f64,
-    /// Σ λ_N (g₁ − g₀) of the step.
+    /// Σ λ_N (g₁ − g₀) of the step; with the penalty, P's jumps where a segment changed.
     pub normal_work: f64,
     /// The part of `normal_work` done by constraints that became active in the step.
     pub activation_work: f64,
-    /// The part done by constraints whose master segment changed in the step.
+    /// The part done by constraints whose master segment changed in the step (docs §3.1).
     pub switch_work: f64,
     /// Σ |λ_N| (|g₀| + |g₁|) over the constraints active at both ends of the step: what their
     /// work W_N can be where they only hold (g₀ and g₁ are zero to the constraint's tolerance).

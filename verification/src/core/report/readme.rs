@@ -293,6 +293,7 @@ pub fn render(reports: &Path) -> Result<Blocks, String> {
                 "μ",
                 "energy change / E_0",
                 "activation work / E_0",
+                "switch work / E_0",
                 "identity ratio",
                 "unchanged ratio",
                 "P ratio",
