@@ -8,7 +8,6 @@ use serde::{Deserialize, Serialize};
 use contactlab::model::multibody::scheme::MultibodyScheme;
 
 use crate::core::format::{invalid, positive, CaseError};
-use crate::multibody::cases::impact::runs::Job;
 use crate::multibody::study::MaterialSpec;
 
 /// The case body of `multibody_impact`.
@@ -95,20 +94,6 @@ pub struct RunSpec {
     /// contact duration and (E_N − E_0)/E_0 within `similarity_tolerance` (relative).
     pub similar_to: Option<String>,
     pub similarity_tolerance: Option<f64>,
-}
-
-impl RunSpec {
-    /// The run's job at resolution 1.
-    pub fn job(&self) -> Job {
-        Job {
-            scheme: self.scheme,
-            friction: self.friction,
-            factor: 1.0,
-            steps: None,
-            penalty: self.penalty,
-            size: self.size.unwrap_or(1.0),
-        }
-    }
 }
 
 /// `[audit_control]`: the records of the run `run` given, at their last step, a defect of

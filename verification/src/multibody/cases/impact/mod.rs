@@ -56,7 +56,7 @@ fn jobs(c: &ImpactCase) -> Vec<Job> {
         }
     };
     for r in &c.runs {
-        push(r.job());
+        push(Job::of(r));
     }
     if let Some(l) = &c.large_step {
         for scheme in [MultibodyScheme::EnergyMomentum, MultibodyScheme::Midpoint] {
@@ -140,7 +140,7 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
     let mut rows = Vec::new();
     let mut shown: Vec<(String, &Outcome)> = Vec::new();
     for r in &c.runs {
-        let job = r.job();
+        let job = Job::of(r);
         let name = format!("{} ({})", r.name, label(&job));
         match find(&job) {
             Err(e) => report.gates.push(GateVerdict::from_checks(
@@ -315,7 +315,7 @@ fn similarity<'a>(
     let Some(spec) = c.runs.iter().find(|x| x.name == reference) else {
         return Vec::new();
     };
-    let base = match find(&spec.job()) {
+    let base = match find(&Job::of(spec)) {
         Ok(b) => b,
         Err(e) => {
             return vec![Check::holds(
@@ -410,7 +410,7 @@ fn audit_control<'a>(
     let Some(r) = c.runs.iter().find(|r| r.name == a.run) else {
         return;
     };
-    let job = r.job();
+    let job = Job::of(r);
     let (checks, table) = match find(&job) {
         Err(e) => (
             vec![Check::holds(

@@ -19,7 +19,7 @@ use contactlab::model::multibody::surface::ContactSurface;
 use contactlab::model::quasistatic::plane::BoundarySelector;
 
 use crate::core::cpu_clock::thread_cpu_seconds;
-use crate::multibody::cases::impact::format::{ImpactCase, RingSpec};
+use crate::multibody::cases::impact::format::{ImpactCase, RingSpec, RunSpec};
 use crate::multibody::errors::contact_interval;
 use crate::multibody::study::{run_recorded, RecordedRun};
 
@@ -38,6 +38,20 @@ pub struct Job {
     /// same; the rebound velocities are s times). A check that no tolerance or guard of the
     /// solver carries a length scale of its own.
     pub size: f64,
+}
+
+impl Job {
+    /// The job of a `[[run]]` at resolution 1.
+    pub fn of(run: &RunSpec) -> Self {
+        Self {
+            scheme: run.scheme,
+            friction: run.friction,
+            factor: 1.0,
+            steps: None,
+            penalty: run.penalty,
+            size: run.size.unwrap_or(1.0),
+        }
+    }
 }
 
 /// The reported quantities of a run.
