@@ -201,3 +201,37 @@ pub fn run_scene_with(file: &Path, out: &Path, vtk: bool) -> Result<String, Stri
         )
     })
 }
+
+/// `verify plan`: plans the cheapest discretization of a scene meeting `request`
+/// (`core::plan`), runs it and writes `plan.json`, `plan.md` and `plan.svg` into `out`; returns
+/// the Markdown summary. So far for rod scenes with an `[exact]` table.
+pub fn plan_scene(
+    file: &Path,
+    request: &crate::core::plan::PlanRequest,
+    out: &Path,
+) -> Result<String, String> {
+    let source = file.display().to_string();
+    let text = std::fs::read_to_string(file).map_err(|e| format!("{source}: {e}"))?;
+    let scene = Scene::from_toml_str(&text, &source).map_err(|e| format!("{source}: {e}"))?;
+    let result = match scene.model() {
+        "rod" => {
+            let p = crate::rod::plan::RodPlan::from_text(&text, &source)?;
+            crate::core::plan::plan(&p, request)?
+        }
+        other => {
+            return Err(format!(
+                "{source}: the planner does not plan model `{other}` scenes yet (rod scenes with \
+                 an [exact] table so far)"
+            ))
+        }
+    };
+    writable_out(out)?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let json = serde_json::to_string_pretty(&result).map_err(|e| e.to_string())?;
+    std::fs::write(out.join("plan.json"), json).map_err(|e| e.to_string())?;
+    let md = result.markdown();
+    std::fs::write(out.join("plan.md"), &md).map_err(|e| e.to_string())?;
+    crate::plot::write_svg(&result.figure(&source), &out.join("plan.svg"))
+        .map_err(|e| e.to_string())?;
+    Ok(md)
+}

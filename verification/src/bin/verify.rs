@@ -98,6 +98,34 @@ enum Command {
         #[arg(long)]
         vtk: bool,
     },
+    /// Plan the cheapest mesh, step and scheme of a scene whose error must meet a target: pilot
+    /// runs, fitted error and cost models, the choice (never above a stability bound, never
+    /// beyond what the pilots support), and the chosen run against its prediction. Writes
+    /// plan.json, plan.md and plan.svg. So far: rod scenes with an [exact] table.
+    Plan {
+        /// The scene (TOML).
+        file: PathBuf,
+        /// The error the run must meet (in the functional's own units).
+        #[arg(long)]
+        target: f64,
+        /// The error functional (rod: paper_E, u_nodal_max, end_displacement, …).
+        #[arg(long, default_value = "paper_E")]
+        functional: String,
+        /// The schemes to choose among, comma-separated (default: all of the model's).
+        #[arg(long, value_delimiter = ',')]
+        schemes: Option<Vec<String>>,
+        /// What the cost model is fitted on: `seconds` (measured CPU time) or `work` (the
+        /// model's deterministic work count, e.g. M·N: the same plan on any machine).
+        #[arg(long, default_value = "seconds")]
+        cost: String,
+        /// Pilot rounds: with more than 1, a target beyond what the pilots support runs the
+        /// pilots again from the resolution the models propose (at most this many rounds).
+        #[arg(long, default_value_t = 1)]
+        rounds: usize,
+        /// Output directory.
+        #[arg(long, default_value = "plan-out")]
+        out: PathBuf,
+    },
     /// Regenerate the README's numbers (its `<!-- generated: … -->` blocks) from reports/;
     /// with --check, exit 1 when they differ instead.
     Readme {
@@ -235,6 +263,42 @@ fn main() -> ExitCode {
                 Err(e) => {
                     eprintln!("error: {e}");
                     ExitCode::from(2)
+                }
+            };
+        }
+        Some(Command::Plan {
+            file,
+            target,
+            functional,
+            schemes,
+            cost,
+            rounds,
+            out,
+        }) => {
+            use contactlab_verify::core::plan::CostMeasure;
+            let cost = match cost.as_str() {
+                "seconds" => CostMeasure::Seconds,
+                "work" => CostMeasure::Work,
+                other => {
+                    eprintln!("error: --cost = {other}: expected `seconds` or `work`");
+                    return ExitCode::from(2);
+                }
+            };
+            let request = contactlab_verify::core::plan::PlanRequest {
+                target: *target,
+                functional: functional.clone(),
+                schemes: schemes.clone(),
+                cost,
+                rounds: *rounds,
+            };
+            return match contactlab_verify::registry::plan_scene(file, &request, out) {
+                Ok(md) => {
+                    println!("{md}\n(written to {})", out.display());
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
                 }
             };
         }

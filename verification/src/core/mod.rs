@@ -10,6 +10,7 @@ pub mod format;
 pub mod gate;
 pub mod json_out;
 pub mod overrides;
+pub mod plan;
 pub mod report;
 pub mod shard;
 pub mod study;

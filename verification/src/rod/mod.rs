@@ -11,6 +11,7 @@
 
 pub mod cases;
 pub mod errors;
+pub mod plan;
 pub mod reference;
 pub mod scene;
 pub mod study;
@@ -42,6 +43,7 @@ impl Family for Rod {
             "rod_work_precision",
             "rod_performance",
             "rod_discrete_reference",
+            "rod_plan",
         ]
     }
 
@@ -57,6 +59,7 @@ impl Family for Rod {
             "rod_discrete_reference" => {
                 cases::discrete_reference::DiscreteReferenceCase::parse(case).map(|_| ())
             }
+            "rod_plan" => cases::plan::PlanCase::parse(case).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -69,6 +72,7 @@ impl Family for Rod {
             "rod_work_precision" => cases::work_precision::run(case, ctx, report),
             "rod_performance" => cases::performance::run(case, ctx, report),
             "rod_discrete_reference" => cases::discrete_reference::run(case, ctx, report),
+            "rod_plan" => cases::plan::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

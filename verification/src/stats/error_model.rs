@@ -85,6 +85,14 @@ pub struct ErrorModelFit {
     pub iterations: usize,
 }
 
+impl ErrorModelFit {
+    /// The model's error at (h, k): `((C_h h^p)^s + (C_k k^q)^s)^{1/s}`.
+    pub fn predict(&self, h: f64, k: f64) -> f64 {
+        let s = self.combination.exponent();
+        ((self.c_h * h.powf(self.p)).powf(s) + (self.c_k * k.powf(self.q)).powf(s)).powf(1.0 / s)
+    }
+}
+
 /// Initial exponents tried, on both axes.
 const START_EXPONENTS: [f64; 4] = [0.5, 1.0, 2.0, 3.0];
 /// Iteration cap per start.

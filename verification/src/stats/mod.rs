@@ -30,6 +30,7 @@
 //! Both report failures through the shared typed error [`FitError`]; nothing in this module
 //! panics on bad input.
 
+pub mod cost_model;
 pub mod error_model;
 pub mod gci;
 pub mod lcg;

@@ -283,6 +283,15 @@ pub fn render(reports: &Path) -> Result<Blocks, String> {
     b.insert("benchmarks".into(), benchmarks(reports)?);
     b.insert("tiers".into(), tiers(reports)?);
     b.insert(
+        "rod_plan".into(),
+        case_table(
+            reports,
+            "rod_plan",
+            "The planner on",
+            &crate::core::plan::PLAN_TABLE_COLUMNS,
+        )?,
+    );
+    b.insert(
         "multibody_conservation".into(),
         case_table(
             reports,

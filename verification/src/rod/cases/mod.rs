@@ -7,5 +7,6 @@ pub mod extreme_checks;
 pub mod extremes;
 pub mod paper_figures;
 pub mod performance;
+pub mod plan;
 pub mod stability;
 pub mod work_precision;
