@@ -204,7 +204,11 @@ pub fn run_scene_with(file: &Path, out: &Path, vtk: bool) -> Result<String, Stri
 
 /// `verify plan`: plans the cheapest discretization of a scene meeting `request`
 /// (`core::plan`), runs it and writes `plan.json`, `plan.md` and `plan.svg` into `out`; returns
-/// the Markdown summary. So far for rod scenes with an `[exact]` table.
+/// the Markdown summary. Rod scenes (errors against their `[exact]` solution, or
+/// self-convergence of u_h(L, T) and σ_h(L, T) without one) and plane scenes on a rectangle
+/// (self-convergence of the contact force, the largest von Mises stress or the largest
+/// displacement at T). An empty `request.functional` takes the model's default: `paper_E` for a
+/// rod scene with `[exact]`, `end_displacement` without, `contact_force` for a plane scene.
 pub fn plan_scene(
     file: &Path,
     request: &crate::core::plan::PlanRequest,
@@ -212,16 +216,41 @@ pub fn plan_scene(
 ) -> Result<String, String> {
     let source = file.display().to_string();
     let text = std::fs::read_to_string(file).map_err(|e| format!("{source}: {e}"))?;
+    let table: toml::Table = toml::from_str(&text).map_err(|e| format!("{source}: {e}"))?;
+    if table.get("model").and_then(|m| m.as_str()) == Some("plane") {
+        // checked before the scene is read: a Gmsh scene is refused without reading its mesh
+        crate::plane::scene_plan::PlaneScenePlan::from_table(table, &source)?;
+    }
     let scene = Scene::from_toml_str(&text, &source).map_err(|e| format!("{source}: {e}"))?;
-    let result = match scene.model() {
-        "rod" => {
+    let mut request = request.clone();
+    let default = |r: &mut crate::core::plan::PlanRequest, name: &str| {
+        if r.functional.is_empty() {
+            r.functional = name.to_string();
+        }
+    };
+    let result = match &scene {
+        Scene::Rod(rod) => {
+            default(
+                &mut request,
+                if rod.exact.is_some() {
+                    "paper_E"
+                } else {
+                    "end_displacement"
+                },
+            );
             let p = crate::rod::plan::RodPlan::from_text(&text, &source)?;
-            crate::core::plan::plan(&p, request)?
+            crate::core::plan::plan(&p, &request)?
+        }
+        Scene::Plane(_) => {
+            default(&mut request, "contact_force");
+            let p = crate::plane::scene_plan::PlaneScenePlan::from_text(&text, &source)?;
+            crate::core::plan::plan(&p, &request)?
         }
         other => {
             return Err(format!(
-                "{source}: the planner does not plan model `{other}` scenes yet (rod scenes with \
-                 an [exact] table so far)"
+                "{source}: the planner does not plan model `{}` scenes yet (rod and plane \
+                 scenes so far)",
+                other.model()
             ))
         }
     };

@@ -49,12 +49,23 @@ fn an_unknown_scheme_and_an_unplanned_model_are_typed_errors() {
     .unwrap_err();
     assert!(e.contains("leapfrog") && e.contains("explicit"), "{e}");
     let e = plan_scene(
-        &root().join("examples/scenes/plane_paper_test_2d.toml"),
+        &root().join("examples/scenes/dynamic_ball_impact.toml"),
         &request(1e-2, None),
         &out,
     )
     .unwrap_err();
-    assert!(e.contains("does not plan model `plane`"), "{e}");
+    assert!(e.contains("does not plan model `dynamic`"), "{e}");
+    // a Gmsh mesh is not refinable by the planner
+    let e = plan_scene(
+        &root().join("examples/scenes/plane_gmsh_notched_block.toml"),
+        &PlanRequest {
+            functional: String::new(),
+            ..request(1e-2, None)
+        },
+        &out,
+    )
+    .unwrap_err();
+    assert!(e.contains("gmsh") && e.contains("geometry.shape"), "{e}");
     let e = plan_scene(
         &root().join("examples/scenes/rod_paper_p0_6.toml"),
         &request(-1.0, None),
@@ -62,4 +73,67 @@ fn an_unknown_scheme_and_an_unplanned_model_are_typed_errors() {
     )
     .unwrap_err();
     assert!(e.contains("--target"), "{e}");
+}
+
+#[test]
+fn a_plane_scene_without_an_exact_solution_is_planned_by_self_convergence() {
+    // Test 2D from its own resolution (24 × 24, 100 steps): the largest displacement's pilots
+    // give p ≈ 1.23 against the expected 2 — refused as pre-asymptotic, nothing run; the contact
+    // force at T is fixed by global equilibrium (the load, 180) for the explicit and implicit
+    // schemes — their pilots agree to round-off, and a pilot meets any target
+    let scene = root().join("examples/scenes/plane_paper_test_2d.toml");
+    let out = std::env::temp_dir().join(format!("plan-command-plane-{}", std::process::id()));
+    let ask = |functional: &str, target: f64| PlanRequest {
+        functional: functional.into(),
+        ..request(target, None)
+    };
+    let md = plan_scene(&scene, &ask("max_displacement", 1e-2), &out).unwrap();
+    assert!(
+        md.contains("pre-asymptotic") && md.contains("expected 2"),
+        "{md}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    assert_eq!(json["decision"]["kind"], "pre_asymptotic");
+    assert!(json["executed"].is_null());
+    let md = plan_scene(&scene, &ask("", 1e-6), &out).unwrap();
+    assert!(
+        md.contains("Plan: contact_force") && md.contains("a pilot already meets"),
+        "{md}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    let value = json["executed"]["value"].as_f64().unwrap();
+    assert!((value - 180.0).abs() < 1e-9, "contact force {value}");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn a_rod_scene_without_an_exact_table_plans_its_end_displacement() {
+    // the p0 = 6 rod without [exact]: u_h(L, T) by self-convergence (the default functional)
+    let text = std::fs::read_to_string(root().join("examples/scenes/rod_paper_p0_6.toml")).unwrap();
+    let mut table: toml::Table = toml::from_str(&text).unwrap();
+    table.remove("exact");
+    let dir = std::env::temp_dir().join(format!("plan-command-rod-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("rod.toml");
+    std::fs::write(&scene, toml::to_string(&table).unwrap()).unwrap();
+    let md = plan_scene(
+        &scene,
+        &PlanRequest {
+            functional: String::new(),
+            ..request(1e-4, None)
+        },
+        &dir.join("out"),
+    )
+    .unwrap();
+    assert!(
+        md.contains("Plan: end_displacement") && md.contains("self-convergence"),
+        "{md}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/plan.json")).unwrap()).unwrap();
+    let estimated = json["executed"]["achieved_error"].as_f64().unwrap();
+    assert!(estimated <= 1e-4, "estimated error {estimated}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -101,16 +101,20 @@ enum Command {
     /// Plan the cheapest mesh, step and scheme of a scene whose error must meet a target: pilot
     /// runs, fitted error and cost models, the choice (never above a stability bound, never
     /// beyond what the pilots support), and the chosen run against its prediction. Writes
-    /// plan.json, plan.md and plan.svg. So far: rod scenes with an [exact] table.
+    /// plan.json, plan.md and plan.svg. Rod scenes (against their [exact] solution, or by
+    /// self-convergence without one) and plane scenes on a rectangle (self-convergence).
     Plan {
         /// The scene (TOML).
         file: PathBuf,
         /// The error the run must meet (in the functional's own units).
         #[arg(long)]
         target: f64,
-        /// The error functional (rod: paper_E, u_nodal_max, end_displacement, …).
-        #[arg(long, default_value = "paper_E")]
-        functional: String,
+        /// The functional whose error the target bounds (rod with [exact]: paper_E, the
+        /// default, u_nodal_max, end_displacement, …; rod without: end_displacement, the
+        /// default, contact_stress; plane: contact_force, the default, max_von_mises,
+        /// max_displacement).
+        #[arg(long)]
+        functional: Option<String>,
         /// The schemes to choose among, comma-separated (default: all of the model's).
         #[arg(long, value_delimiter = ',')]
         schemes: Option<Vec<String>>,
@@ -286,7 +290,7 @@ fn main() -> ExitCode {
             };
             let request = contactlab_verify::core::plan::PlanRequest {
                 target: *target,
-                functional: functional.clone(),
+                functional: functional.clone().unwrap_or_default(),
                 schemes: schemes.clone(),
                 cost,
                 rounds: *rounds,

@@ -61,6 +61,10 @@ pub struct Level {
     pub scheme: String,
     /// Error functionals by name (empty without an exact solution).
     pub errors: BTreeMap<String, f64>,
+    /// Values of output functionals by name (the planner's self-convergence: a contact force at
+    /// T, a rebound velocity; empty where a study measures errors only).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub values: BTreeMap<String, f64>,
     /// The study's end value (the rod: u_h(L, T); a plane body: max |u_N|).
     pub u_end: f64,
     /// Wall time of the solver run including the error evaluation (s).
@@ -104,6 +108,7 @@ impl Level {
             k: m.k,
             scheme: scheme.to_string(),
             errors: m.errors,
+            values: BTreeMap::new(),
             u_end: m.u_end,
             cpu_seconds,
             stats: serde_json::to_value(&m.stats).unwrap_or(serde_json::Value::Null),

@@ -13,7 +13,9 @@
 
 pub mod cases;
 pub mod errors;
+pub mod plan;
 pub mod scene;
+pub mod scene_plan;
 pub mod study;
 pub mod vtk;
 
@@ -43,6 +45,8 @@ impl Family for Plane {
             "plane_paths",
             "plane_performance",
             "plane_gmsh",
+            "plane_plan",
+            "plane_plan_self",
         ]
     }
 
@@ -54,6 +58,8 @@ impl Family for Plane {
             "plane_paths" => cases::paths::PathsCase::parse(case).map(|_| ()),
             "plane_performance" => cases::performance::PerformanceCase::parse(case).map(|_| ()),
             "plane_gmsh" => cases::gmsh::parse(case).map(|_| ()),
+            "plane_plan" => cases::plan::PlanCase::parse(case).map(|_| ()),
+            "plane_plan_self" => cases::plan_self::PlanSelfCase::parse(case).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -66,6 +72,8 @@ impl Family for Plane {
             "plane_paths" => cases::paths::run(case, ctx, report),
             "plane_performance" => cases::performance::run(case, ctx, report),
             "plane_gmsh" => cases::gmsh::run(case, ctx, report),
+            "plane_plan" => cases::plan::run(case, ctx, report),
+            "plane_plan_self" => cases::plan_self::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

@@ -210,7 +210,8 @@ impl PlaneStudy {
         }
     }
 
-    fn solver(
+    /// The solver of the study's problem on n × n squares with N steps.
+    pub fn solver(
         &self,
         divisions: usize,
         steps: usize,

@@ -44,6 +44,7 @@ impl Family for Rod {
             "rod_performance",
             "rod_discrete_reference",
             "rod_plan",
+            "rod_plan_self",
         ]
     }
 
@@ -60,6 +61,7 @@ impl Family for Rod {
                 cases::discrete_reference::DiscreteReferenceCase::parse(case).map(|_| ())
             }
             "rod_plan" => cases::plan::PlanCase::parse(case).map(|_| ()),
+            "rod_plan_self" => cases::plan_self::PlanSelfCase::parse(case).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -73,6 +75,7 @@ impl Family for Rod {
             "rod_performance" => cases::performance::run(case, ctx, report),
             "rod_discrete_reference" => cases::discrete_reference::run(case, ctx, report),
             "rod_plan" => cases::plan::run(case, ctx, report),
+            "rod_plan_self" => cases::plan_self::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

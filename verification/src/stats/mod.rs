@@ -32,6 +32,7 @@
 
 pub mod cost_model;
 pub mod error_model;
+pub mod extrapolation;
 pub mod gci;
 pub mod lcg;
 pub mod levels;

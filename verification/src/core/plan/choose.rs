@@ -37,6 +37,10 @@ pub struct SchemeModels {
     pub n_range: (usize, usize),
     /// The largest stable step (explicit schemes), None where there is no bound.
     pub stability_bound: Option<f64>,
+    /// (M, N) held inside the pilots' range: the model lacks the term in h (in k) the theory
+    /// expects (a one-term fallback where that term was merely small over the pilots), so it
+    /// says nothing about coarser or finer M (N).
+    pub held: (bool, bool),
 }
 
 /// A candidate discretization with its predictions.
@@ -113,9 +117,10 @@ impl SchemeModels {
     /// The search box the pilots support.
     pub fn supported(&self) -> ((usize, usize), (usize, usize)) {
         let x = |v: usize| ((v as f64) * EXTRAPOLATION).round() as usize;
+        let range = |(lo, hi): (usize, usize), held: bool| (lo, if held { hi } else { x(hi) });
         (
-            (self.m_range.0, x(self.m_range.1)),
-            (self.n_range.0, x(self.n_range.1)),
+            range(self.m_range, self.held.0),
+            range(self.n_range, self.held.1),
         )
     }
 }
@@ -139,17 +144,25 @@ pub fn choose(models: &[SchemeModels], target: f64) -> Option<Choice> {
 }
 
 /// Where the models say the target would be met without the pilots' limits (M and N from 1/16
-/// of the coarsest to 1000 times the finest pilot): where the next round of pilots should be.
+/// of the coarsest to 1000 times the finest pilot, a held parameter within its pilots' range):
+/// where the next round of pilots should be.
 pub fn unsupported(models: &[SchemeModels], target: f64) -> Option<Choice> {
     let mut best: Option<Choice> = None;
     for s in models {
-        let far = |v: usize| v.saturating_mul(1000);
-        let near = |v: usize| (v / 16).max(1);
+        // a held parameter stays inside the pilots' range (`SchemeModels::held`)
+        let range = |(lo, hi): (usize, usize), held: bool| {
+            if held {
+                (lo, hi)
+            } else {
+                ((lo / 16).max(1), hi.saturating_mul(1000))
+            }
+        };
+        let (m_lo, m_hi) = range(s.m_range, s.held.0);
+        let n_box = range(s.n_range, s.held.1);
         // geometric M, then bisection in N
-        let mut m = near(s.m_range.0);
-        while m <= far(s.m_range.1) {
-            if let Some(c) = s.cheapest(AIM * target, (m, m), (near(s.n_range.0), far(s.n_range.1)))
-            {
+        let mut m = m_lo;
+        while m <= m_hi {
+            if let Some(c) = s.cheapest(AIM * target, (m, m), n_box) {
                 if best
                     .as_ref()
                     .is_none_or(|b| c.predicted_cost < b.predicted_cost)
@@ -199,6 +212,7 @@ mod tests {
             m_range: (4, 16),
             n_range: (4, 16),
             stability_bound: bound,
+            held: (false, false),
         }
     }
 
@@ -258,5 +272,23 @@ mod tests {
             far.elements > 64 && far.predicted_error <= AIM * 0.01,
             "{far:?}"
         );
+    }
+
+    #[test]
+    fn a_held_parameter_stays_inside_the_pilots_range_even_where_the_model_is_blind_to_it() {
+        // a time-only law (the space term lost in the fit): coarser meshes look free to it
+        let mut s = models(0.0, 1.0, None);
+        s.error = ErrorModel::TimeOnly {
+            c: 1.0,
+            q: 1.0,
+            residual_std: 0.0,
+        };
+        let free = unsupported(std::slice::from_ref(&s), 0.01).unwrap();
+        assert_eq!(free.elements, 1, "{free:?}");
+        s.held = (true, false);
+        let held = unsupported(std::slice::from_ref(&s), 0.01).unwrap();
+        assert_eq!(held.elements, s.m_range.0, "{held:?}");
+        let chosen = choose(std::slice::from_ref(&s), 0.1).unwrap();
+        assert!((4..=16).contains(&chosen.elements), "{chosen:?}");
     }
 }

@@ -17,6 +17,7 @@
 //!    the models say is needed, as the next pilot.
 //! 5. **Run.** The choice is run: predicted against achieved error and cost.
 
+pub mod case;
 pub mod choose;
 pub mod model;
 
@@ -28,6 +29,9 @@ use crate::core::sweep::Level;
 use crate::plot::{Figure, Series};
 use choose::{choose, unsupported, Choice, SchemeModels};
 use model::{fit_cost, fit_error, ErrorModel};
+
+use crate::stats::extrapolation::{fit_extrapolation, Extrapolation};
+use crate::stats::gci::{analyse, GciResult};
 
 /// The largest log-space residual standard deviation of an error model the planner extrapolates
 /// (≈ 15 % relative misfit over the pilots).
@@ -74,6 +78,42 @@ pub trait Plannable: Study {
     fn work(&self, elements: usize, steps: usize) -> f64;
 }
 
+/// A family's study with the resolution of the first round's finest pilot: the [`Study`] part
+/// of a [`Plannable`] (each family implements the rest for its own `Based<…Study>`).
+pub struct Based<S> {
+    pub study: S,
+    /// (M₀, N₀).
+    pub base: (usize, usize),
+}
+
+impl<S: Study> Study for Based<S> {
+    type Scheme = S::Scheme;
+
+    fn default_scheme(&self) -> S::Scheme {
+        self.study.default_scheme()
+    }
+
+    fn run_level(
+        &self,
+        elements: usize,
+        steps: usize,
+        scheme: S::Scheme,
+        time_error: bool,
+    ) -> Result<Level, String> {
+        self.study.run_level(elements, steps, scheme, time_error)
+    }
+}
+
+/// The formal order of a functional from its expected orders (p, q): the smaller of the two
+/// declared, 1 where none is.
+pub fn formal_order((p, q): (Option<f64>, Option<f64>)) -> f64 {
+    match (p, q) {
+        (Some(p), Some(q)) => p.min(q),
+        (Some(o), None) | (None, Some(o)) => o,
+        (None, None) => 1.0,
+    }
+}
+
 /// What the cost model is fitted on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -108,7 +148,11 @@ pub struct Pilot {
     pub steps: usize,
     pub h: f64,
     pub k: f64,
+    /// Against the exact solution; with self-convergence, |F − F*| against the scheme's
+    /// extrapolated value F* (or, where its model is rejected, against its finest pilot).
     pub error: f64,
+    /// The functional's value (self-convergence; None with an exact solution).
+    pub value: Option<f64>,
     /// The cost the model is fitted on (`PlanRequest::cost`).
     pub cost: f64,
 }
@@ -121,6 +165,9 @@ pub struct SchemeSummary {
     pub cost_model: Option<crate::stats::cost_model::CostModelFit>,
     pub expected_orders: (Option<f64>, Option<f64>),
     pub stability_bound: Option<f64>,
+    /// Self-convergence: the GCI of the diagonal pilots (M₀/4, N₀/4), (M₀/2, N₀/2), (M₀, N₀)
+    /// (ratio 2, h and k refined together), with its observed order.
+    pub gci: Option<GciResult>,
     /// Why the scheme's model is not used (None: used).
     pub rejected: Option<String>,
 }
@@ -151,6 +198,11 @@ pub struct Executed {
     /// achieved / target and measured / predicted cost.
     pub error_ratio: f64,
     pub cost_ratio: f64,
+    /// Self-convergence: the run's value of the functional and the extrapolated value F* its
+    /// error is estimated against (the achieved error is then an estimate: `plane_plan_self`
+    /// measures it against a run two levels finer).
+    pub value: Option<f64>,
+    pub reference_value: Option<f64>,
 }
 
 /// The plan and its evidence.
@@ -186,13 +238,40 @@ pub fn pilot_levels((m0, n0): (usize, usize)) -> Vec<(usize, usize)> {
     out
 }
 
-fn error_of(level: &Level, functional: &str) -> Result<f64, String> {
-    level.errors.get(functional).copied().ok_or_else(|| {
-        format!(
-            "the functional `{functional}` is not measured; known: {}",
-            level.errors.keys().cloned().collect::<Vec<_>>().join(", ")
-        )
-    })
+/// What a run measured of the functional: its error against an exact solution, or its value
+/// (self-convergence).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Measure {
+    Error(f64),
+    Value(f64),
+}
+
+impl Measure {
+    fn amount(self) -> f64 {
+        match self {
+            Measure::Error(v) | Measure::Value(v) => v,
+        }
+    }
+}
+
+/// The functional of a run: an error (`Level::errors`) or a value (`Level::values`).
+pub fn measure(level: &Level, functional: &str) -> Result<Measure, String> {
+    if let Some(e) = level.errors.get(functional) {
+        return Ok(Measure::Error(*e));
+    }
+    if let Some(v) = level.values.get(functional) {
+        return Ok(Measure::Value(*v));
+    }
+    Err(format!(
+        "the functional `{functional}` is not measured; known: {}",
+        level
+            .errors
+            .keys()
+            .chain(level.values.keys())
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", ")
+    ))
 }
 
 /// Plans (and runs) the cheapest discretization meeting `request` (module docs).
@@ -201,10 +280,35 @@ fn error_of(level: &Level, functional: &str) -> Result<f64, String> {
 /// A scheme name the family does not have, an unknown functional, a non-positive target, a
 /// failed pilot or the failed chosen run.
 pub fn plan<P: Plannable>(p: &P, request: &PlanRequest) -> Result<PlanResult, String> {
-    let mut base = p.base();
+    plan_with_base(p, request, p.base())
+}
+
+/// [`plan`] with the first round's finest pilot at `base` instead of the scene's own.
+///
+/// # Errors
+/// As [`plan`].
+pub fn plan_with_base<P: Plannable>(
+    p: &P,
+    request: &PlanRequest,
+    base: (usize, usize),
+) -> Result<PlanResult, String> {
+    let mut base = base;
     let mut rounds = Vec::new();
+    let mut earlier: Option<PlanResult> = None;
     loop {
         let mut r = plan_from(p, request, base)?;
+        // a round that refuses after an earlier round chose: the earlier choice stands (the
+        // further round only looked for a cheaper one)
+        if !matches!(
+            r.decision,
+            Decision::Chosen { .. } | Decision::PilotMeets { .. }
+        ) {
+            if let Some(mut e) = earlier.take() {
+                rounds.push(base);
+                e.rounds = rounds;
+                return Ok(e);
+            }
+        }
         rounds.push(base);
         let next = match &r.decision {
             Decision::BeyondPilots { needed: Some(c) } => Some((c.elements.max(4), c.steps.max(4))),
@@ -219,7 +323,15 @@ pub fn plan<P: Plannable>(p: &P, request: &PlanRequest) -> Result<PlanResult, St
             _ => None,
         };
         match next {
-            Some(b) if rounds.len() < request.rounds.max(1) && !rounds.contains(&b) => base = b,
+            Some(b) if rounds.len() < request.rounds.max(1) && !rounds.contains(&b) => {
+                if matches!(
+                    r.decision,
+                    Decision::Chosen { .. } | Decision::PilotMeets { .. }
+                ) {
+                    earlier = Some(r);
+                }
+                base = b;
+            }
             _ => {
                 r.rounds = rounds;
                 return Ok(r);
@@ -292,17 +404,22 @@ fn plan_from<P: Plannable>(
     let mut pilots = Vec::new();
     for (r, &(s, m, n)) in measured.into_iter().zip(&jobs) {
         let (l, cost) = r.map_err(|e| format!("pilot ({s}, M = {m}, N = {n}): {e}"))?;
+        let x = measure(&l, &request.functional)?;
         pilots.push(Pilot {
             scheme: l.scheme.clone(),
             elements: l.elements,
             steps: l.steps,
             h: l.h,
             k: l.k,
-            error: error_of(&l, &request.functional)?,
+            // a value's error is set once its scheme's extrapolation is known
+            error: x.amount(),
+            value: matches!(x, Measure::Value(_)).then_some(x.amount()),
             cost,
         });
         levels.push(l);
     }
+    let self_convergence = pilots.iter().any(|x| x.value.is_some());
+    let floor = p.floor(&request.functional, &levels);
     // 2–3. models and their checks
     let mut summaries = Vec::new();
     let mut usable = Vec::new();
@@ -311,6 +428,7 @@ fn plan_from<P: Plannable>(
         let own: Vec<&Pilot> = pilots.iter().filter(|x| x.scheme == name).collect();
         let col = |f: fn(&Pilot) -> f64| own.iter().map(|x| f(x)).collect::<Vec<f64>>();
         let (h, k, e) = (col(|x| x.h), col(|x| x.k), col(|x| x.error));
+        let values: Vec<f64> = own.iter().filter_map(|x| x.value).collect();
         let (m, n, t) = (
             col(|x| x.elements as f64),
             col(|x| x.steps as f64),
@@ -318,7 +436,23 @@ fn plan_from<P: Plannable>(
         );
         let expected = p.expected_orders(s, &request.functional);
         let bound = p.stability_bound(s);
-        let error_model = fit_error(&h, &k, &e);
+        let spread = values.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v))
+            - values.iter().fold(f64::INFINITY, |m, v| m.min(*v));
+        let error_model = if self_convergence && spread <= floor {
+            // the values agree to round-off: the functional does not depend on (h, k) here
+            // (e.g. a contact force fixed by global equilibrium)
+            Ok(ErrorModel::Extrapolated(Extrapolation::constant(
+                values.iter().sum::<f64>() / values.len() as f64,
+                values.len(),
+            )))
+        } else if self_convergence {
+            fit_extrapolation(&h, &k, &values).map(ErrorModel::Extrapolated)
+        } else {
+            fit_error(&h, &k, &e)
+        };
+        let gci = self_convergence
+            .then(|| diagonal_gci(&own, base, expected))
+            .flatten();
         let cost_model = fit_cost(&m, &n, &t);
         let mut rejected = None;
         match (&error_model, &cost_model) {
@@ -356,6 +490,10 @@ fn plan_from<P: Plannable>(
                 m_range: minmax(own.iter().map(|x| x.elements)),
                 n_range: minmax(own.iter().map(|x| x.steps)),
                 stability_bound: bound,
+                held: (
+                    expected.0.is_some() && em.orders().0.is_none(),
+                    expected.1.is_some() && em.orders().1.is_none(),
+                ),
             });
         }
         summaries.push(SchemeSummary {
@@ -364,14 +502,49 @@ fn plan_from<P: Plannable>(
             cost_model: cost_model.ok(),
             expected_orders: expected,
             stability_bound: bound,
+            gci,
             rejected,
         });
     }
+    // self-convergence: each pilot's error against its scheme's extrapolated value (or, where
+    // the model is rejected, against the scheme's finest pilot: a diagnostic only)
+    if self_convergence {
+        for s in &summaries {
+            let reference = match (&s.error_model, &s.rejected) {
+                (Some(ErrorModel::Extrapolated(x)), None) => Some(x.value),
+                _ => pilots
+                    .iter()
+                    .filter(|x| x.scheme == s.scheme)
+                    .max_by_key(|x| (x.elements, x.steps))
+                    .and_then(|x| x.value),
+            };
+            for x in pilots.iter_mut().filter(|x| x.scheme == s.scheme) {
+                if let (Some(v), Some(r)) = (x.value, reference) {
+                    x.error = (v - r).abs();
+                }
+            }
+        }
+    }
     // 4. the decision
-    let floor = p.floor(&request.functional, &levels);
+    let trusted = |scheme: &str| !self_convergence || usable.iter().any(|u| u.scheme == scheme);
+    // a pilot's error: measured against the exact solution; with self-convergence only
+    // estimated, so the larger of |F − F*| and the model's bound |a| h^p + |b| k^q (the two
+    // parts may cancel at the pilot's (h, k), and the estimate would then promise an error a
+    // finer reference does not confirm)
+    let claimed = |x: &Pilot| -> f64 {
+        if !self_convergence {
+            return x.error;
+        }
+        let bound = usable
+            .iter()
+            .find(|u| u.scheme == x.scheme)
+            .map_or(f64::INFINITY, |u| u.error.predict(x.h, x.k));
+        x.error.max(bound)
+    };
     let pilot_choice = pilots
         .iter()
-        .filter(|x| x.error <= request.target)
+        .filter(|x| trusted(&x.scheme))
+        .filter(|x| claimed(x) <= request.target)
         .min_by(|a, b| a.cost.total_cmp(&b.cost))
         .map(|x| Choice {
             scheme: x.scheme.clone(),
@@ -379,7 +552,7 @@ fn plan_from<P: Plannable>(
             steps: x.steps,
             h: x.h,
             k: x.k,
-            predicted_error: x.error,
+            predicted_error: claimed(x),
             predicted_cost: x.cost,
         });
     let decision = if request.target < floor {
@@ -421,21 +594,40 @@ fn plan_from<P: Plannable>(
                         choice.elements, choice.steps
                     )
                 })?;
-            let achieved = error_of(&l, &request.functional)?;
+            let (achieved, value, reference) = match measure(&l, &request.functional)? {
+                Measure::Error(e) => (e, None, None),
+                Measure::Value(v) => {
+                    let r = extrapolated_value(&summaries, &choice.scheme)
+                        .ok_or("the chosen scheme has no extrapolated value")?;
+                    ((v - r).abs(), Some(v), Some(r))
+                }
+            };
             let cost = cost_of(choice.elements, choice.steps, s)?;
             Some(Executed {
                 achieved_error: achieved,
                 measured_cost: cost,
                 error_ratio: achieved / request.target,
                 cost_ratio: cost / choice.predicted_cost,
+                value,
+                reference_value: reference,
             })
         }
-        Decision::PilotMeets { choice } => Some(Executed {
-            achieved_error: choice.predicted_error,
-            measured_cost: choice.predicted_cost,
-            error_ratio: choice.predicted_error / request.target,
-            cost_ratio: 1.0,
-        }),
+        Decision::PilotMeets { choice } => {
+            let pilot = pilots.iter().find(|x| {
+                x.scheme == choice.scheme
+                    && x.elements == choice.elements
+                    && x.steps == choice.steps
+            });
+            let value = pilot.and_then(|x| x.value);
+            Some(Executed {
+                achieved_error: choice.predicted_error,
+                measured_cost: choice.predicted_cost,
+                error_ratio: choice.predicted_error / request.target,
+                cost_ratio: 1.0,
+                value,
+                reference_value: value.and(extrapolated_value(&summaries, &choice.scheme)),
+            })
+        }
         _ => None,
     };
     Ok(PlanResult {
@@ -450,11 +642,59 @@ fn plan_from<P: Plannable>(
     })
 }
 
+/// The extrapolated value F* of a scheme whose self-convergence model is used.
+fn extrapolated_value(summaries: &[SchemeSummary], scheme: &str) -> Option<f64> {
+    summaries
+        .iter()
+        .find_map(|s| match (&s.error_model, &s.rejected) {
+            (Some(ErrorModel::Extrapolated(x)), None) if s.scheme == scheme => Some(x.value),
+            _ => None,
+        })
+}
+
+/// The GCI of a scheme's diagonal pilots (M₀/4, N₀/4), (M₀/2, N₀/2), (M₀, N₀) (None unless M₀
+/// and N₀ are multiples of 4, so that the ratio is exactly 2, or a pilot is missing).
+fn diagonal_gci(
+    own: &[&Pilot],
+    (m0, n0): (usize, usize),
+    (p, q): (Option<f64>, Option<f64>),
+) -> Option<GciResult> {
+    if m0 % 4 != 0 || n0 % 4 != 0 {
+        return None;
+    }
+    let values: Option<Vec<f64>> = [4, 2, 1]
+        .iter()
+        .map(|d| {
+            own.iter()
+                .find(|x| x.elements == m0 / d && x.steps == n0 / d)
+                .and_then(|x| x.value)
+        })
+        .collect();
+    analyse(&values?, 2.0, formal_order((p, q))).ok()
+}
+
 fn minmax(v: impl Iterator<Item = usize>) -> (usize, usize) {
     v.fold((usize::MAX, 0), |(lo, hi), x| (lo.min(x), hi.max(x)))
 }
 
 impl PlanResult {
+    /// The pilots as (cost, error) markers, one series per scheme labelled "`label`: scheme".
+    pub fn pilot_series(&self, label: &str) -> Vec<Series> {
+        self.schemes
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let pts: Vec<(f64, f64)> = self
+                    .pilots
+                    .iter()
+                    .filter(|p| p.scheme == s.scheme)
+                    .map(|p| (p.cost, p.error))
+                    .collect();
+                Series::markers(format!("{label}: {}", s.scheme), pts).color(i)
+            })
+            .collect()
+    }
+
     /// The work–precision figure: the pilots per scheme, the chosen scheme's model along its
     /// cheapest path, the target and the chosen point (predicted and achieved).
     pub fn figure(&self, title: &str) -> Figure {
@@ -468,14 +708,8 @@ impl PlanResult {
             CostMeasure::Work => "cost (work: M·N)",
         })
         .y_label(format!("error ({})", self.request.functional));
-        for (i, s) in self.schemes.iter().enumerate() {
-            let pts: Vec<(f64, f64)> = self
-                .pilots
-                .iter()
-                .filter(|p| p.scheme == s.scheme)
-                .map(|p| (p.cost, p.error))
-                .collect();
-            fig = fig.series(Series::markers(format!("pilots: {}", s.scheme), pts).color(i));
+        for series in self.pilot_series("pilots") {
+            fig = fig.series(series);
         }
         fig = fig.horizontal_line(self.request.target, "target");
         if let Decision::Chosen { choice } = &self.decision {
@@ -504,13 +738,14 @@ impl PlanResult {
             self.base.1,
             if self.rounds.len() > 1 {
                 format!(
-                    " (round {} of the pilots; earlier rounds from {})",
-                    self.rounds.len(),
-                    self.rounds[..self.rounds.len() - 1]
+                    " (pilot rounds from {}; the decision is the round from ({}, {}))",
+                    self.rounds
                         .iter()
                         .map(|(m, n)| format!("({m}, {n})"))
                         .collect::<Vec<_>>()
-                        .join(", ")
+                        .join(", "),
+                    self.base.0,
+                    self.base.1
                 )
             } else {
                 String::new()
@@ -543,6 +778,35 @@ impl PlanResult {
                 m.rejected.as_deref().unwrap_or("yes")
             ));
         }
+        if self.pilots.iter().any(|x| x.value.is_some()) {
+            s.push_str(
+                "\nNo exact solution: self-convergence. Each scheme's pilot values are fitted by \
+                 F ≈ F* + a h^p + b k^q; a pilot's error is |F − F*| and the predicted error \
+                 |a| h^p + |b| k^q. The GCI of the diagonal pilots (ratio 2):\n\n\
+                 | scheme | F* | GCI of the finest diagonal pilot | observed order | convergence |\n|---|---|---|---|---|\n",
+            );
+            for m in &self.schemes {
+                let fstar = match &m.error_model {
+                    Some(ErrorModel::Extrapolated(x)) => format!("{:.6e}", x.value),
+                    _ => "—".into(),
+                };
+                let (gci, order, conv) = m.gci.as_ref().map_or(
+                    ("—".to_string(), "—".to_string(), "—".to_string()),
+                    |g| {
+                        (
+                            g.gci_fine_percent
+                                .map_or("—".into(), |v| format!("{v:.3} %")),
+                            g.order.map_or("—".into(), |o| format!("{o:.3}")),
+                            format!("{:?}", g.convergence),
+                        )
+                    },
+                );
+                s.push_str(&format!(
+                    "| {} | {fstar} | {gci} | {order} | {conv} |\n",
+                    m.scheme
+                ));
+            }
+        }
         s.push_str("\n## Decision\n\n");
         match &self.decision {
             Decision::Chosen { choice } | Decision::PilotMeets { choice } => {
@@ -573,10 +837,16 @@ impl PlanResult {
             )),
         }
         if let Some(x) = &self.executed {
-            s.push_str(&format!(
-                "\nAchieved error {:.3e} ({:.2} × target); cost {:.3e} ({:.2} × predicted).\n",
-                x.achieved_error, x.error_ratio, x.measured_cost, x.cost_ratio
-            ));
+            match (x.value, x.reference_value) {
+                (Some(v), Some(r)) => s.push_str(&format!(
+                    "\nValue {v:.9e}; its error estimated against F* = {r:.9e}: {:.3e} ({:.2} × target); cost {:.3e} ({:.2} × predicted).\n",
+                    x.achieved_error, x.error_ratio, x.measured_cost, x.cost_ratio
+                )),
+                _ => s.push_str(&format!(
+                    "\nAchieved error {:.3e} ({:.2} × target); cost {:.3e} ({:.2} × predicted).\n",
+                    x.achieved_error, x.error_ratio, x.measured_cost, x.cost_ratio
+                )),
+            }
         }
         s
     }

@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::stats::cost_model::{fit_cost_model, CostModelFit};
 use crate::stats::error_model::{fit_error_model_with, Combination, ErrorModelFit};
+use crate::stats::extrapolation::Extrapolation;
 use crate::stats::FitError;
 
 /// Confidence level of the fits' intervals.
@@ -25,6 +26,9 @@ pub enum ErrorModel {
     TimeOnly { c: f64, q: f64, residual_std: f64 },
     /// E = C h^p (the temporal term negligible over the pilots).
     SpaceOnly { c: f64, p: f64, residual_std: f64 },
+    /// Self-convergence (no exact solution): F ≈ F* + a h^p + b k^q fitted to the pilots'
+    /// values; E = |a| h^p + |b| k^q (`stats::extrapolation`).
+    Extrapolated(Extrapolation),
 }
 
 impl ErrorModel {
@@ -34,6 +38,7 @@ impl ErrorModel {
             ErrorModel::Joint(f) => f.predict(h, k),
             ErrorModel::TimeOnly { c, q, .. } => c * k.powf(*q),
             ErrorModel::SpaceOnly { c, p, .. } => c * h.powf(*p),
+            ErrorModel::Extrapolated(x) => x.error_bound(h, k),
         }
     }
 
@@ -43,6 +48,7 @@ impl ErrorModel {
             ErrorModel::Joint(f) => (Some(f.p), Some(f.q)),
             ErrorModel::TimeOnly { q, .. } => (None, Some(*q)),
             ErrorModel::SpaceOnly { p, .. } => (Some(*p), None),
+            ErrorModel::Extrapolated(x) => (x.p, x.q),
         }
     }
 
@@ -53,6 +59,7 @@ impl ErrorModel {
             ErrorModel::Joint(f) => f.residual_std,
             ErrorModel::TimeOnly { residual_std, .. }
             | ErrorModel::SpaceOnly { residual_std, .. } => *residual_std,
+            ErrorModel::Extrapolated(x) => x.relative_residual,
         }
     }
 
@@ -69,6 +76,18 @@ impl ErrorModel {
             ErrorModel::SpaceOnly { c, p, residual_std } => format!(
                 "E = {c:.3e} h^{p:.3} (the temporal term negligible; log residual {residual_std:.3})"
             ),
+            ErrorModel::Extrapolated(x) => {
+                let part = |c: f64, o: Option<f64>, v: &str| {
+                    o.map_or(String::new(), |o| format!(" {:+.3e} {v}^{o:.3}", c))
+                };
+                format!(
+                    "F = {:.6e}{}{} (self-convergence; relative residual {:.3})",
+                    x.value,
+                    part(x.a, x.p, "h"),
+                    part(x.b, x.q, "k"),
+                    x.relative_residual
+                )
+            }
         }
     }
 }

@@ -291,6 +291,32 @@ pub fn render(reports: &Path) -> Result<Blocks, String> {
             &crate::core::plan::PLAN_TABLE_COLUMNS,
         )?,
     );
+    let mut plane_columns: Vec<&str> = crate::core::plan::PLAN_TABLE_COLUMNS[..9].to_vec();
+    plane_columns.push("work n²·N");
+    b.insert(
+        "plane_plan".into(),
+        case_table(reports, "plane_plan", "The planner on", &plane_columns)?,
+    );
+    b.insert(
+        "plane_plan_self".into(),
+        case_table(
+            reports,
+            "plane_plan_self",
+            "The planner by self-convergence",
+            &[
+                "target",
+                "scheme",
+                "M",
+                "N",
+                "predicted error",
+                "estimated error (pilots' F*)",
+                "achieved error vs F(4M, 4N)",
+                "band U",
+                "observed order",
+                "achieved / target",
+            ],
+        )?,
+    );
     b.insert(
         "multibody_conservation".into(),
         case_table(

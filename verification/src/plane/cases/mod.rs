@@ -6,4 +6,6 @@ pub mod gmsh;
 pub mod paper_test_2d;
 pub mod paths;
 pub mod performance;
+pub mod plan;
+pub mod plan_self;
 pub mod stability;

@@ -8,5 +8,6 @@ pub mod extremes;
 pub mod paper_figures;
 pub mod performance;
 pub mod plan;
+pub mod plan_self;
 pub mod stability;
 pub mod work_precision;

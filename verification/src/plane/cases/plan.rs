@@ -1,0 +1,42 @@
+//! `plane_plan`: the planner itself under test on a plane manufactured problem
+//! (`core::plan::case`; docs/planner.md §4). The cost is the deterministic work n²·N.
+
+use serde::Deserialize;
+
+use crate::core::case::Case;
+use crate::core::context::RunContext;
+use crate::core::format::CaseError;
+use crate::core::plan::case::{run_targets, PlanSpec};
+use crate::core::report::case_report::CaseReport;
+use crate::plane::plan::PlanePlan;
+use crate::plane::study::{Discretization, ExactSpec, PlaneStudy};
+
+/// The case body of `plane_plan`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanCase {
+    pub exact: ExactSpec,
+    #[serde(default)]
+    pub discretization: Discretization,
+    pub plan: PlanSpec,
+}
+
+impl PlanCase {
+    /// Parses and checks the case body.
+    pub fn parse(case: &Case) -> Result<Self, CaseError> {
+        let c: PlanCase = case.body()?;
+        c.exact.check(case.path())?;
+        c.plan.check(case.path())?;
+        Ok(c)
+    }
+}
+
+/// Runs the case.
+pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(), String> {
+    let c = PlanCase::parse(case).map_err(|e| e.to_string())?;
+    let p = PlanePlan {
+        study: PlaneStudy::from_case(&c.exact, &c.discretization)?,
+        base: (c.plan.base[0], c.plan.base[1]),
+    };
+    run_targets(&p, &c.plan, "n²·N", ctx, report)
+}
