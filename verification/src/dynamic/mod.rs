@@ -17,6 +17,7 @@
 
 pub mod cases;
 pub mod errors;
+pub mod plan;
 pub mod scene;
 pub mod study;
 pub mod vtk;
@@ -48,6 +49,7 @@ impl Family for Dynamic {
             "dynamic_extremes",
             "dynamic_performance",
             "dynamic_friction",
+            "dynamic_plan",
         ]
     }
 
@@ -60,6 +62,7 @@ impl Family for Dynamic {
             "dynamic_extremes" => cases::extremes::check(case),
             "dynamic_performance" => cases::performance::check(case),
             "dynamic_friction" => cases::friction::check(case),
+            "dynamic_plan" => cases::plan::PlanCase::parse(case).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -73,6 +76,7 @@ impl Family for Dynamic {
             "dynamic_extremes" => cases::extremes::run(case, ctx, report),
             "dynamic_performance" => cases::performance::run(case, ctx, report),
             "dynamic_friction" => cases::friction::run(case, ctx, report),
+            "dynamic_plan" => cases::plan::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

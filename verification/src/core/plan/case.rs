@@ -354,6 +354,9 @@ pub fn run_targets<P: Plannable>(
         header,
         rows,
     });
+    if let Some(r) = &first {
+        report.tables.push(models_table(r));
+    }
     if !cost_checks.is_empty() {
         report.gates.push(GateVerdict::from_checks(
             "planner: cost against an exhaustive grid search".into(),
@@ -425,6 +428,7 @@ pub fn run_targets_self<P: Plannable>(
     let mut estimated_pts = Vec::new();
     let mut predicted_pts = Vec::new();
     let mut targets = Vec::new();
+    let mut first: Option<PlanResult> = None;
     for &t in &spec.targets {
         let r = plan(p, &spec.request(t))?;
         let (what, choice) = match &r.decision {
@@ -480,6 +484,9 @@ pub fn run_targets_self<P: Plannable>(
         estimated_pts.push((x.measured_cost, x.achieved_error));
         predicted_pts.push((choice.predicted_cost, choice.predicted_error));
         targets.push((x.measured_cost, t));
+        if first.is_none() {
+            first = Some(r.clone());
+        }
     }
     let n = spec.targets.len() as f64;
     report.gates.push(GateVerdict::from_checks(
@@ -529,6 +536,9 @@ pub fn run_targets_self<P: Plannable>(
         .collect(),
         rows,
     });
+    if let Some(r) = &first {
+        report.tables.push(models_table(r));
+    }
     let fig = Figure::new(format!(
         "Self-convergence plans ({}): achieved against a run two levels finer",
         spec.functional
@@ -542,6 +552,43 @@ pub fn run_targets_self<P: Plannable>(
     .series(Series::markers("achieved (against (4M, 4N))", achieved_pts).color(5));
     ctx.plot(report, "plan_self_convergence", &fig)?;
     extremes(p, spec, report)
+}
+
+/// The table of the first target's models: per scheme the error model with its observed orders
+/// against the expected ones, the cost model, and whether the planner used it (else why not).
+fn models_table(r: &PlanResult) -> Table {
+    let o = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x}"));
+    Table {
+        title: format!(
+            "The first target's models (pilots at (M₀/4 … M₀) × (N₀/4 … N₀), (M₀, N₀) = ({}, {}))",
+            r.base.0, r.base.1
+        ),
+        header: [
+            "scheme",
+            "error model",
+            "expected (p, q)",
+            "cost model",
+            "used",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect(),
+        rows: r
+            .schemes
+            .iter()
+            .map(|m| {
+                vec![
+                    m.scheme.clone(),
+                    m.error_model.as_ref().map_or("—".into(), |e| e.describe()),
+                    format!("({}, {})", o(m.expected_orders.0), o(m.expected_orders.1)),
+                    m.cost_model
+                        .as_ref()
+                        .map_or("—".into(), |c| format!("c M^{:.2} N^{:.2}", c.a, c.b)),
+                    m.rejected.clone().unwrap_or_else(|| "yes".into()),
+                ]
+            })
+            .collect(),
+    }
 }
 
 /// The extremes of `spec`: a target below float64's floor is refused with the floor; a loose

@@ -8,4 +8,5 @@ pub mod friction;
 pub mod impact;
 pub mod manufactured;
 pub mod performance;
+pub mod plan;
 pub mod signorini_bar;
