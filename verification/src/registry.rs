@@ -204,55 +204,92 @@ pub fn run_scene_with(file: &Path, out: &Path, vtk: bool) -> Result<String, Stri
 
 /// `verify plan`: plans the cheapest discretization of a scene meeting `request`
 /// (`core::plan`), runs it and writes `plan.json`, `plan.md` and `plan.svg` into `out`; returns
-/// the Markdown summary. Rod scenes (errors against their `[exact]` solution, or
-/// self-convergence of u_h(L, T) and σ_h(L, T) without one) and plane scenes on a rectangle
-/// (self-convergence of the contact force, the largest von Mises stress or the largest
-/// displacement at T). An empty `request.functional` takes the model's default: `paper_E` for a
-/// rod scene with `[exact]`, `end_displacement` without, `contact_force` for a plane scene.
+/// the Markdown summary. `base` sets the first round's finest pilot (M₀, N₀) instead of the
+/// scene's own resolution. Rod scenes (errors against their `[exact]` solution, or
+/// self-convergence of u_h(L, T) and σ_h(L, T) without one), plane scenes on a rectangle, and
+/// dynamic and multibody scenes on generated shapes (self-convergence of their functionals at T;
+/// docs/planner.md). An empty `request.functional` takes the model's default: `paper_E` for a
+/// rod scene with `[exact]`, `end_displacement` without, `contact_force` for a plane scene, the
+/// rebound velocity (or a displacement) for a dynamic scene, the first body's `velocity_x` for
+/// a multibody scene.
 pub fn plan_scene(
     file: &Path,
     request: &crate::core::plan::PlanRequest,
+    base: Option<(usize, usize)>,
     out: &Path,
 ) -> Result<String, String> {
+    use crate::core::plan::{plan, plan_with_base, PlanRequest, Plannable};
+    fn run<P: Plannable>(
+        p: &P,
+        request: &PlanRequest,
+        base: Option<(usize, usize)>,
+    ) -> Result<crate::core::plan::PlanResult, String> {
+        match base {
+            Some(b) => plan_with_base(p, request, b),
+            None => plan(p, request),
+        }
+    }
     let source = file.display().to_string();
     let text = std::fs::read_to_string(file).map_err(|e| format!("{source}: {e}"))?;
     let table: toml::Table = toml::from_str(&text).map_err(|e| format!("{source}: {e}"))?;
-    if table.get("model").and_then(|m| m.as_str()) == Some("plane") {
-        // checked before the scene is read: a Gmsh scene is refused without reading its mesh
-        crate::plane::scene_plan::PlaneScenePlan::from_table(table, &source)?;
+    if let Some((m, n)) = base {
+        if m == 0 || n == 0 {
+            return Err(format!("--base {m},{n}: expected M₀ ≥ 1 and N₀ ≥ 1"));
+        }
     }
-    let scene = Scene::from_toml_str(&text, &source).map_err(|e| format!("{source}: {e}"))?;
     let mut request = request.clone();
-    let default = |r: &mut crate::core::plan::PlanRequest, name: &str| {
-        if r.functional.is_empty() {
-            r.functional = name.to_string();
+    let model = table.get("model").and_then(|m| m.as_str()).unwrap_or("");
+    // the families that read the table themselves (a Gmsh body is refused before its mesh is
+    // read)
+    let result = match model {
+        "plane" => {
+            if request.functional.is_empty() {
+                request.functional = "contact_force".into();
+            }
+            let p = crate::plane::scene_plan::PlaneScenePlan::from_table(table, &source)?;
+            run(&p, &request, base)?
         }
-    };
-    let result = match &scene {
-        Scene::Rod(rod) => {
-            default(
-                &mut request,
-                if rod.exact.is_some() {
-                    "paper_E"
-                } else {
-                    "end_displacement"
-                },
-            );
-            let p = crate::rod::plan::RodPlan::from_text(&text, &source)?;
-            crate::core::plan::plan(&p, &request)?
+        "dynamic" if table.get("body").is_some_and(|b| b.is_array()) => {
+            let p = crate::multibody::scene_plan::MultibodyScenePlan::from_table(
+                table,
+                &source,
+                &request.functional,
+            )?;
+            request.functional = p.functional().to_string();
+            run(&p, &request, base)?
         }
-        Scene::Plane(_) => {
-            default(&mut request, "contact_force");
-            let p = crate::plane::scene_plan::PlaneScenePlan::from_text(&text, &source)?;
-            crate::core::plan::plan(&p, &request)?
+        "dynamic" => {
+            let p = crate::dynamic::scene_plan::DynamicScenePlan::from_table(
+                table,
+                &source,
+                &request.functional,
+            )?;
+            request.functional = p.functional().to_string();
+            run(&p, &request, base)?
         }
-        other => {
-            return Err(format!(
-                "{source}: the planner does not plan model `{}` scenes yet (rod and plane \
-                 scenes so far)",
-                other.model()
-            ))
-        }
+        _ => match Scene::from_toml_str(&text, &source).map_err(|e| format!("{source}: {e}"))? {
+            Scene::Rod(rod) => {
+                if request.functional.is_empty() {
+                    request.functional = if rod.exact.is_some() {
+                        "paper_E"
+                    } else {
+                        "end_displacement"
+                    }
+                    .into();
+                }
+                let p = crate::rod::plan::RodPlan::from_text(&text, &source)?;
+                run(&p, &request, base)?
+            }
+            other => {
+                return Err(format!(
+                    "{source}: the planner does not plan model `{}` scenes: an eigenvalue \
+                     problem has no mesh–step trade to choose (its convergence in the basis \
+                     size is what the moving cases gate); it plans rod, plane, dynamic and \
+                     multibody scenes",
+                    other.model()
+                ))
+            }
+        },
     };
     writable_out(out)?;
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;

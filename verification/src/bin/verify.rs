@@ -102,7 +102,8 @@ enum Command {
     /// runs, fitted error and cost models, the choice (never above a stability bound, never
     /// beyond what the pilots support), and the chosen run against its prediction. Writes
     /// plan.json, plan.md and plan.svg. Rod scenes (against their [exact] solution, or by
-    /// self-convergence without one) and plane scenes on a rectangle (self-convergence).
+    /// self-convergence without one); plane, dynamic and multibody scenes on generated shapes
+    /// (self-convergence).
     Plan {
         /// The scene (TOML).
         file: PathBuf,
@@ -112,7 +113,11 @@ enum Command {
         /// The functional whose error the target bounds (rod with [exact]: paper_E, the
         /// default, u_nodal_max, end_displacement, …; rod without: end_displacement, the
         /// default, contact_stress; plane: contact_force, the default, max_von_mises,
-        /// max_displacement).
+        /// max_displacement; dynamic: rebound_velocity_y (a bar: rebound_velocity), the
+        /// default for a free body in contact, rebound_velocity_x, contact_force,
+        /// max_von_mises, max_displacement (a bar: end_displacement); multibody:
+        /// velocity_x.NAME, the default for the first body, velocity_y.NAME, contact_force,
+        /// max_von_mises, max_displacement).
         #[arg(long)]
         functional: Option<String>,
         /// The schemes to choose among, comma-separated (default: all of the model's).
@@ -126,6 +131,10 @@ enum Command {
         /// pilots again from the resolution the models propose (at most this many rounds).
         #[arg(long, default_value_t = 1)]
         rounds: usize,
+        /// The first round's finest pilot M₀,N₀ (default: the scene's own mesh count and
+        /// steps); the pilots run at (M₀/4 … M₀) × (N₀/4 … N₀).
+        #[arg(long, value_name = "M0,N0")]
+        base: Option<String>,
         /// Output directory.
         #[arg(long, default_value = "plan-out")]
         out: PathBuf,
@@ -277,6 +286,7 @@ fn main() -> ExitCode {
             schemes,
             cost,
             rounds,
+            base,
             out,
         }) => {
             use contactlab_verify::core::plan::CostMeasure;
@@ -295,7 +305,21 @@ fn main() -> ExitCode {
                 cost,
                 rounds: *rounds,
             };
-            return match contactlab_verify::registry::plan_scene(file, &request, out) {
+            let base = match base.as_deref().map(|b| {
+                let v: Vec<Option<usize>> = b.split(',').map(|x| x.trim().parse().ok()).collect();
+                match v.as_slice() {
+                    [Some(m), Some(n)] => Ok((*m, *n)),
+                    _ => Err(b.to_string()),
+                }
+            }) {
+                None => None,
+                Some(Ok(b)) => Some(b),
+                Some(Err(b)) => {
+                    eprintln!("error: --base {b}: expected two counts M0,N0 (e.g. 16,400)");
+                    return ExitCode::from(2);
+                }
+            };
+            return match contactlab_verify::registry::plan_scene(file, &request, base, out) {
                 Ok(md) => {
                     println!("{md}\n(written to {})", out.display());
                     ExitCode::SUCCESS

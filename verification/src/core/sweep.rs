@@ -69,6 +69,10 @@ pub struct Level {
     pub u_end: f64,
     /// Wall time of the solver run including the error evaluation (s).
     pub cpu_seconds: f64,
+    /// The CPU time of the same on its thread (s; not in the reports: a timing the planner's
+    /// cost model may be fitted on, `Plannable::run_seconds`).
+    #[serde(skip)]
+    pub thread_seconds: f64,
     /// The solver's statistics (the model's own statistics type, as JSON).
     pub stats: serde_json::Value,
 }
@@ -99,7 +103,9 @@ impl Level {
         run: impl FnOnce() -> Result<Measured<St>, E>,
     ) -> Result<Self, E> {
         let start = Instant::now();
+        let thread_start = crate::core::cpu_clock::thread_cpu_seconds();
         let m = run()?;
+        let thread_seconds = crate::core::cpu_clock::thread_cpu_seconds() - thread_start;
         let cpu_seconds = start.elapsed().as_secs_f64();
         Ok(Self {
             elements,
@@ -111,6 +117,7 @@ impl Level {
             values: BTreeMap::new(),
             u_end: m.u_end,
             cpu_seconds,
+            thread_seconds,
             stats: serde_json::to_value(&m.stats).unwrap_or(serde_json::Value::Null),
         })
     }

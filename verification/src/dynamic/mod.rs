@@ -12,6 +12,8 @@
 //! | `dynamic_extremes` | [`cases::extremes`] | blow-up of the midpoint rule, penalty 1 … 1e14, impact speeds, large steps |
 //! | `dynamic_performance` | [`cases::performance`] | cost per step against dofs on both solver paths, the ring impact's time |
 //! | `dynamic_friction` | [`cases::friction`] | Coulomb friction in size: a sliding block against its closed form (rates in k, the stop), a loaded block's step equations and momentum invariant |
+//! | `dynamic_plan` | [`cases::plan`] | the planner on the manufactured problem: achieved against target, cost against a grid search |
+//! | `dynamic_plan_self` | [`cases::plan_self`] | the planner by self-convergence on a scene (the ring impact): achieved against a run two levels finer |
 //!
 //! [`study`] holds what every kind shares: the audited run, its plots and gates.
 
@@ -19,6 +21,7 @@ pub mod cases;
 pub mod errors;
 pub mod plan;
 pub mod scene;
+pub mod scene_plan;
 pub mod study;
 pub mod vtk;
 
@@ -50,6 +53,7 @@ impl Family for Dynamic {
             "dynamic_performance",
             "dynamic_friction",
             "dynamic_plan",
+            "dynamic_plan_self",
         ]
     }
 
@@ -63,6 +67,7 @@ impl Family for Dynamic {
             "dynamic_performance" => cases::performance::check(case),
             "dynamic_friction" => cases::friction::check(case),
             "dynamic_plan" => cases::plan::PlanCase::parse(case).map(|_| ()),
+            "dynamic_plan_self" => cases::plan_self::PlanSelfCase::parse(case).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -77,6 +82,7 @@ impl Family for Dynamic {
             "dynamic_performance" => cases::performance::run(case, ctx, report),
             "dynamic_friction" => cases::friction::run(case, ctx, report),
             "dynamic_plan" => cases::plan::run(case, ctx, report),
+            "dynamic_plan_self" => cases::plan_self::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

@@ -183,6 +183,10 @@ impl Plannable for DynamicPlan {
         (elements as f64).powi(2) * steps as f64
     }
 
+    fn work_label(&self) -> &'static str {
+        "n²·N"
+    }
+
     /// 100 ε max |u(T)|.
     fn floor(&self, _functional: &str, _pilots: &[Level]) -> f64 {
         100.0 * f64::EPSILON * self.scale().max(f64::MIN_POSITIVE)

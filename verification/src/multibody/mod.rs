@@ -21,6 +21,7 @@ pub mod audit_reference;
 pub mod cases;
 pub mod errors;
 pub mod scene;
+pub mod scene_plan;
 pub mod study;
 
 use std::path::Path;

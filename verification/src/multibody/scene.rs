@@ -28,6 +28,8 @@ mod plots;
 mod run;
 mod vtk;
 
+pub(crate) use json::normal_force;
+
 use std::path::Path;
 
 use serde::Serialize;

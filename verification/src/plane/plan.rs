@@ -81,6 +81,10 @@ impl Plannable for PlanePlan {
         (elements as f64).powi(2) * steps as f64
     }
 
+    fn work_label(&self) -> &'static str {
+        "n²·N"
+    }
+
     /// 100 ε times the largest nodal |u_N| of the pilots.
     fn floor(&self, _functional: &str, pilots: &[Level]) -> f64 {
         let scale = pilots.iter().map(|l| l.u_end.abs()).fold(0.0, f64::max);

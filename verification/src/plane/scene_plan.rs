@@ -19,7 +19,7 @@ use contactlab::scene::plane::{PlaneScene, PlaneSceneFile};
 
 use crate::core::cpu_clock::min_thread_cpu_seconds;
 use crate::core::overrides;
-use crate::core::plan::Plannable;
+use crate::core::plan::{value_floor, Plannable};
 use crate::core::study::Study;
 use crate::core::sweep::{Level, Measured};
 
@@ -251,12 +251,12 @@ impl Plannable for PlaneScenePlan {
         elements as f64 * ny * steps as f64
     }
 
+    fn work_label(&self) -> &'static str {
+        "n_x n_y N"
+    }
+
     /// 100 ε times the largest magnitude of the functional over the pilots.
     fn floor(&self, functional: &str, pilots: &[Level]) -> f64 {
-        let scale = pilots
-            .iter()
-            .map(|l| l.values.get(functional).map_or(l.u_end.abs(), |v| v.abs()))
-            .fold(0.0, f64::max);
-        100.0 * f64::EPSILON * scale.max(f64::MIN_POSITIVE)
+        value_floor(functional, pilots)
     }
 }

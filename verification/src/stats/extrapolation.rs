@@ -61,6 +61,16 @@ impl Extrapolation {
         s + t
     }
 
+    /// A part whose fitted order lies on the edge of the searched interval [0.2, 5] (within the
+    /// refinement's step): the residual still falls beyond it, so the data do not determine that
+    /// order — ("p" or "q", the order).
+    pub fn order_at_search_bound(&self) -> Option<(&'static str, f64)> {
+        let at_edge = |o: f64| o <= ORDER_MIN + 1e-3 || o >= ORDER_MAX - 1e-3;
+        [("p", self.p), ("q", self.q)]
+            .into_iter()
+            .find_map(|(name, o)| o.filter(|&o| at_edge(o)).map(|o| (name, o)))
+    }
+
     /// F(h, k) of the model.
     pub fn predict(&self, h: f64, k: f64) -> f64 {
         let s = self.p.map_or(0.0, |p| self.a * h.powf(p));
@@ -317,6 +327,26 @@ mod tests {
         let (h, k, f) = grid(|h, k| (40.0 * h).sin() + (90.0 * k).cos());
         let e = fit_extrapolation(&h, &k, &f).unwrap();
         assert!(e.relative_residual > 0.15, "{e:?}");
+    }
+
+    #[test]
+    fn an_order_beyond_the_searched_interval_is_flagged_on_its_edge() {
+        // a space part of order 7, steeper than any order searched: the fit stops at p = 5,
+        // and says that p is not determined; a part of order 2 is not flagged
+        let (h, k, f) = grid(|h, k| 1.0 + 40.0 * h.powi(7) + 0.5 * k * k);
+        let e = fit_extrapolation(&h, &k, &f).unwrap();
+        assert_eq!(
+            e.order_at_search_bound().map(|(n, _)| n),
+            Some("p"),
+            "{e:?}"
+        );
+        let (h, k, f) = grid(|h, k| 1.0 + 0.7 * h * h + 0.5 * k);
+        assert_eq!(
+            fit_extrapolation(&h, &k, &f)
+                .unwrap()
+                .order_at_search_bound(),
+            None
+        );
     }
 
     #[test]

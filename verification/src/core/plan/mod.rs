@@ -15,18 +15,28 @@
 //!    0.85 × target, inside what the pilots support and below each scheme's stability bound — or
 //!    the cheapest pilot that already meets the target; else a refusal that names the resolution
 //!    the models say is needed, as the next pilot.
-//! 5. **Run.** The choice is run: predicted against achieved error and cost.
+//! 5. **Run.** The choice is run: predicted against achieved error and cost. The run lies
+//!    outside the pilots, so it tests the model: an error above the target, or (self-convergence)
+//!    a value off the model's prediction by more than [`VALIDATION_TOLERANCE`] of the predicted
+//!    error, is a miss ([`Decision::Missed`]), and the next round (if any) pilots one level finer.
+//!
+//! A pilot that fails takes its scheme out of the plan, with the failure as the reason; a model
+//! whose fitted order lies on the edge of the orders searched is pre-asymptotic. Rounds
+//! ([`plan_with_base`]) run the pilots again where a round refused, missed, or chose against the
+//! pilots' limits. [`render`] draws and writes a plan, [`refine`] scales the counts of a scene's
+//! generated shapes, [`case`] runs the planner's own verification cases.
 
 pub mod case;
 pub mod choose;
 pub mod model;
+pub mod refine;
+pub mod render;
 
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::core::study::Study;
 use crate::core::sweep::Level;
-use crate::plot::{Figure, Series};
 use choose::{choose, unsupported, Choice, SchemeModels};
 use model::{fit_cost, fit_error, ErrorModel};
 
@@ -55,6 +65,10 @@ pub const PLAN_TABLE_COLUMNS: [&str; 10] = [
 pub const UNCONSTRAINED_GAIN: f64 = 0.9;
 /// An observed order may leave the expected one by this fraction of it.
 pub const ORDER_TOLERANCE: f64 = 0.3;
+/// Self-convergence: the chosen run's value must agree with the model's prediction of it to
+/// this fraction of the predicted error (the run lies outside the pilots' box: it tests the
+/// extrapolation).
+pub const VALIDATION_TOLERANCE: f64 = 0.3;
 
 /// A model family's study that the planner can drive.
 pub trait Plannable: Study {
@@ -76,6 +90,17 @@ pub trait Plannable: Study {
     fn seconds(&self, elements: usize, steps: usize, scheme: Self::Scheme) -> Result<f64, String>;
     /// The deterministic work of a run (e.g. M·N for a solver whose step costs O(M)).
     fn work(&self, elements: usize, steps: usize) -> f64;
+
+    /// How the work is counted, for tables and figures (e.g. `M·N`).
+    fn work_label(&self) -> &'static str {
+        "M·N"
+    }
+
+    /// The CPU seconds of the run `level` itself, for a family whose runs are long enough to be
+    /// timed once (None: [`Plannable::seconds`] times the run again).
+    fn run_seconds(&self, _level: &Level) -> Option<f64> {
+        None
+    }
 }
 
 /// A family's study with the resolution of the first round's finest pilot: the [`Study`] part
@@ -187,6 +212,18 @@ pub enum Decision {
     BeyondPilots { needed: Option<Choice> },
     /// No scheme's model describes its pilots (pre-asymptotic): a finer pilot is proposed.
     PreAsymptotic { proposed_pilot: (usize, usize) },
+    /// The chosen run contradicts the model that chose it: its error above the target (against
+    /// the exact solution), or (self-convergence) its value off the model's prediction by more
+    /// than [`VALIDATION_TOLERANCE`] of the predicted error, or its estimated error above the
+    /// target. The pilots were pre-asymptotic where the choice lies: the next round pilots one
+    /// level finer.
+    Missed {
+        choice: Choice,
+        proposed_pilot: (usize, usize),
+    },
+    /// Every scheme had a pilot that failed (a Newton method that did not converge, a rebound
+    /// not reached by T, …): nothing to model; the failures, one per scheme.
+    PilotsFailed { failures: Vec<String> },
 }
 
 /// The chosen run, executed.
@@ -203,6 +240,11 @@ pub struct Executed {
     /// measures it against a run two levels finer).
     pub value: Option<f64>,
     pub reference_value: Option<f64>,
+    /// Self-convergence: the model's prediction F* + a h^p + b k^q of the run's value, and
+    /// |F − that| over the predicted error (at most [`VALIDATION_TOLERANCE`] where the model
+    /// holds at the choice).
+    pub predicted_value: Option<f64>,
+    pub deviation: Option<f64>,
 }
 
 /// The plan and its evidence.
@@ -220,6 +262,8 @@ pub struct PlanResult {
     pub schemes: Vec<SchemeSummary>,
     pub decision: Decision,
     pub executed: Option<Executed>,
+    /// How the work is counted (`Plannable::work_label`).
+    pub work_label: String,
 }
 
 /// The pilot levels of a base resolution: (M₀/4, M₀/2, M₀) × (N₀/4, N₀/2, N₀), each ≥ 1.
@@ -236,6 +280,16 @@ pub fn pilot_levels((m0, n0): (usize, usize)) -> Vec<(usize, usize)> {
         }
     }
     out
+}
+
+/// 100 ε times the largest magnitude of `functional`'s values over the pilots: the float64 floor
+/// of a value measured by self-convergence (differences of values below it are round-off).
+pub fn value_floor(functional: &str, pilots: &[Level]) -> f64 {
+    let scale = pilots
+        .iter()
+        .filter_map(|l| l.values.get(functional))
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    100.0 * f64::EPSILON * scale.max(f64::MIN_POSITIVE)
 }
 
 /// What a run measured of the functional: its error against an exact solution, or its value
@@ -311,8 +365,11 @@ pub fn plan_with_base<P: Plannable>(
         }
         rounds.push(base);
         let next = match &r.decision {
-            Decision::BeyondPilots { needed: Some(c) } => Some((c.elements.max(4), c.steps.max(4))),
-            Decision::PreAsymptotic { proposed_pilot } => Some(*proposed_pilot),
+            Decision::BeyondPilots { needed: Some(c) } => {
+                Some(next_base((c.elements, c.steps), base))
+            }
+            Decision::PreAsymptotic { proposed_pilot }
+            | Decision::Missed { proposed_pilot, .. } => Some(*proposed_pilot),
             // the choice pressed against the pilots' limits: the models put the optimum
             // outside, at least 10 % cheaper — pilot again around it
             Decision::Chosen { choice } | Decision::PilotMeets { choice } => r
@@ -338,6 +395,16 @@ pub fn plan_with_base<P: Plannable>(
             }
         }
     }
+}
+
+/// The finest pilot of the round after a refusal beyond the pilots of `base`: in each of M and N,
+/// half the `needed` count where that is more than twice the pilots' (the needed point then lies
+/// at twice the new finest pilot, inside the [`choose::EXTRAPOLATION`] the models are trusted
+/// over, and the round's pilots cost about one chosen run instead of several), else the needed
+/// count; at least 4.
+fn next_base(needed: (usize, usize), base: (usize, usize)) -> (usize, usize) {
+    let at = |n: usize, b: usize| if n > 2 * b { n.div_ceil(2) } else { n }.max(4);
+    (at(needed.0, base.0), at(needed.1, base.1))
 }
 
 /// One round of [`plan`] with its finest pilot at `base`.
@@ -387,23 +454,42 @@ fn plan_from<P: Plannable>(
             }
         }
     }
-    let cost_of = |m: usize, n: usize, s: P::Scheme| -> Result<f64, String> {
+    // the cost of the run `l` at (M, N, scheme): its work, its own time where the family
+    // times its runs (a long run), or the family's repeated timing
+    let cost_of = |l: &Level, s: P::Scheme| -> Result<f64, String> {
         Ok(match request.cost {
-            CostMeasure::Seconds => p.seconds(m, n, s)?.max(1e-9),
-            CostMeasure::Work => p.work(m, n),
+            CostMeasure::Seconds => match p.run_seconds(l) {
+                Some(t) => t,
+                None => p.seconds(l.elements, l.steps, s)?,
+            }
+            .max(1e-9),
+            CostMeasure::Work => p.work(l.elements, l.steps),
         })
     };
     let measured: Vec<Result<(Level, f64), String>> = jobs
         .par_iter()
         .map(|&(s, m, n)| {
             let l = p.run_level(m, n, s, false)?;
-            Ok((l, cost_of(m, n, s)?))
+            let cost = cost_of(&l, s)?;
+            Ok((l, cost))
         })
         .collect();
     let mut levels = Vec::new();
     let mut pilots = Vec::new();
+    // a scheme with a failed pilot is not modelled (its first failure says why); the plan goes
+    // on with the other schemes
+    let mut failed: Vec<(String, String)> = Vec::new();
     for (r, &(s, m, n)) in measured.into_iter().zip(&jobs) {
-        let (l, cost) = r.map_err(|e| format!("pilot ({s}, M = {m}, N = {n}): {e}"))?;
+        let (l, cost) = match r {
+            Ok(x) => x,
+            Err(e) => {
+                let name = s.to_string();
+                if !failed.iter().any(|(f, _)| *f == name) {
+                    failed.push((name, format!("pilot (M = {m}, N = {n}) failed: {e}")));
+                }
+                continue;
+            }
+        };
         let x = measure(&l, &request.functional)?;
         pilots.push(Pilot {
             scheme: l.scheme.clone(),
@@ -425,6 +511,18 @@ fn plan_from<P: Plannable>(
     let mut usable = Vec::new();
     for &s in &schemes {
         let name = s.to_string();
+        if let Some((_, why)) = failed.iter().find(|(f, _)| *f == name) {
+            summaries.push(SchemeSummary {
+                scheme: name,
+                error_model: None,
+                cost_model: None,
+                expected_orders: p.expected_orders(s, &request.functional),
+                stability_bound: p.stability_bound(s),
+                gci: None,
+                rejected: Some(why.clone()),
+            });
+            continue;
+        }
         let own: Vec<&Pilot> = pilots.iter().filter(|x| x.scheme == name).collect();
         let col = |f: fn(&Pilot) -> f64| own.iter().map(|x| f(x)).collect::<Vec<f64>>();
         let (h, k, e) = (col(|x| x.h), col(|x| x.k), col(|x| x.error));
@@ -465,6 +563,13 @@ fn plan_from<P: Plannable>(
                         100.0 * (em.residual_std().exp() - 1.0),
                         em.residual_std()
                     ));
+                }
+                if let ErrorModel::Extrapolated(x) = em {
+                    if let Some((label, o)) = x.order_at_search_bound() {
+                        rejected = Some(format!(
+                            "pre-asymptotic: observed {label} = {o:.3} on the edge of the orders searched, [0.2, 5]: not determined by the pilots"
+                        ));
+                    }
                 }
                 let (po, qo) = em.orders();
                 for (label, observed, exp) in [("p", po, expected.0), ("q", qo, expected.1)] {
@@ -541,39 +646,57 @@ fn plan_from<P: Plannable>(
             .map_or(f64::INFINITY, |u| u.error.predict(x.h, x.k));
         x.error.max(bound)
     };
+    // a pilot as a choice: measured, its error claimed as above
+    let pilot_as_choice = |x: &Pilot| Choice {
+        scheme: x.scheme.clone(),
+        elements: x.elements,
+        steps: x.steps,
+        h: x.h,
+        k: x.k,
+        predicted_error: claimed(x),
+        predicted_cost: x.cost,
+    };
     let pilot_choice = pilots
         .iter()
         .filter(|x| trusted(&x.scheme))
         .filter(|x| claimed(x) <= request.target)
         .min_by(|a, b| a.cost.total_cmp(&b.cost))
-        .map(|x| Choice {
-            scheme: x.scheme.clone(),
-            elements: x.elements,
-            steps: x.steps,
-            h: x.h,
-            k: x.k,
-            predicted_error: claimed(x),
-            predicted_cost: x.cost,
-        });
+        .map(pilot_as_choice);
     let decision = if request.target < floor {
         Decision::BelowFloor { floor }
     } else if usable.is_empty() {
         match pilot_choice {
             Some(choice) => Decision::PilotMeets { choice },
+            None if failed.len() == schemes.len() => Decision::PilotsFailed {
+                failures: failed
+                    .iter()
+                    .map(|(s, why)| format!("{s}: {why}"))
+                    .collect(),
+            },
             None => Decision::PreAsymptotic {
                 proposed_pilot: (2 * base.0, 2 * base.1),
             },
         }
     } else {
-        match (choose(&usable, request.target), pilot_choice) {
+        // a choice that is itself a pilot meeting the target is that pilot, measured
+        let as_pilot = |c: &Choice| {
+            pilots
+                .iter()
+                .filter(|x| trusted(&x.scheme) && claimed(x) <= request.target)
+                .find(|x| x.scheme == c.scheme && x.elements == c.elements && x.steps == c.steps)
+                .map(pilot_as_choice)
+        };
+        let chosen = choose(&usable, request.target);
+        match (chosen.as_ref().and_then(as_pilot), chosen, pilot_choice) {
             // a pilot as cheap as the choice (to round-off of the cost model) is measured, not
             // predicted: it wins
-            (Some(c), Some(pc)) if pc.predicted_cost <= c.predicted_cost * (1.0 + 1e-9) => {
+            (_, Some(c), Some(pc)) if pc.predicted_cost <= c.predicted_cost * (1.0 + 1e-9) => {
                 Decision::PilotMeets { choice: pc }
             }
-            (Some(choice), _) => Decision::Chosen { choice },
-            (None, Some(choice)) => Decision::PilotMeets { choice },
-            (None, None) => Decision::BeyondPilots {
+            (Some(pilot), _, _) => Decision::PilotMeets { choice: pilot },
+            (None, Some(choice), _) => Decision::Chosen { choice },
+            (None, None, Some(choice)) => Decision::PilotMeets { choice },
+            (None, None, None) => Decision::BeyondPilots {
                 needed: unsupported(&usable, request.target),
             },
         }
@@ -594,15 +717,20 @@ fn plan_from<P: Plannable>(
                         choice.elements, choice.steps
                     )
                 })?;
-            let (achieved, value, reference) = match measure(&l, &request.functional)? {
-                Measure::Error(e) => (e, None, None),
+            let (achieved, value, reference, predicted) = match measure(&l, &request.functional)? {
+                Measure::Error(e) => (e, None, None, None),
                 Measure::Value(v) => {
-                    let r = extrapolated_value(&summaries, &choice.scheme)
+                    let x = extrapolation(&summaries, &choice.scheme)
                         .ok_or("the chosen scheme has no extrapolated value")?;
-                    ((v - r).abs(), Some(v), Some(r))
+                    (
+                        (v - x.value).abs(),
+                        Some(v),
+                        Some(x.value),
+                        Some(x.predict(choice.h, choice.k)),
+                    )
                 }
             };
-            let cost = cost_of(choice.elements, choice.steps, s)?;
+            let cost = cost_of(&l, s)?;
             Some(Executed {
                 achieved_error: achieved,
                 measured_cost: cost,
@@ -610,6 +738,10 @@ fn plan_from<P: Plannable>(
                 cost_ratio: cost / choice.predicted_cost,
                 value,
                 reference_value: reference,
+                predicted_value: predicted,
+                deviation: value
+                    .zip(predicted)
+                    .map(|(v, f)| (v - f).abs() / choice.predicted_error.max(f64::MIN_POSITIVE)),
             })
         }
         Decision::PilotMeets { choice } => {
@@ -625,10 +757,26 @@ fn plan_from<P: Plannable>(
                 error_ratio: choice.predicted_error / request.target,
                 cost_ratio: 1.0,
                 value,
-                reference_value: value.and(extrapolated_value(&summaries, &choice.scheme)),
+                reference_value: value
+                    .and(extrapolation(&summaries, &choice.scheme).map(|x| x.value)),
+                predicted_value: None,
+                deviation: None,
             })
         }
         _ => None,
+    };
+    // the chosen run lies outside the pilots: it tests the model that chose it
+    let decision = match (decision, &executed) {
+        (Decision::Chosen { choice }, Some(x))
+            if x.achieved_error > request.target
+                || x.deviation.is_some_and(|d| d > VALIDATION_TOLERANCE) =>
+        {
+            Decision::Missed {
+                choice,
+                proposed_pilot: (2 * base.0, 2 * base.1),
+            }
+        }
+        (d, _) => d,
     };
     Ok(PlanResult {
         request: request.clone(),
@@ -639,15 +787,16 @@ fn plan_from<P: Plannable>(
         schemes: summaries,
         decision,
         executed,
+        work_label: p.work_label().to_string(),
     })
 }
 
-/// The extrapolated value F* of a scheme whose self-convergence model is used.
-fn extrapolated_value(summaries: &[SchemeSummary], scheme: &str) -> Option<f64> {
+/// The self-convergence model of a scheme whose model is used.
+fn extrapolation<'a>(summaries: &'a [SchemeSummary], scheme: &str) -> Option<&'a Extrapolation> {
     summaries
         .iter()
         .find_map(|s| match (&s.error_model, &s.rejected) {
-            (Some(ErrorModel::Extrapolated(x)), None) if s.scheme == scheme => Some(x.value),
+            (Some(ErrorModel::Extrapolated(x)), None) if s.scheme == scheme => Some(x),
             _ => None,
         })
 }
@@ -677,177 +826,122 @@ fn minmax(v: impl Iterator<Item = usize>) -> (usize, usize) {
     v.fold((usize::MAX, 0), |(lo, hi), x| (lo.min(x), hi.max(x)))
 }
 
-impl PlanResult {
-    /// The pilots as (cost, error) markers, one series per scheme labelled "`label`: scheme".
-    pub fn pilot_series(&self, label: &str) -> Vec<Series> {
-        self.schemes
-            .iter()
-            .enumerate()
-            .map(|(i, s)| {
-                let pts: Vec<(f64, f64)> = self
-                    .pilots
-                    .iter()
-                    .filter(|p| p.scheme == s.scheme)
-                    .map(|p| (p.cost, p.error))
-                    .collect();
-                Series::markers(format!("{label}: {}", s.scheme), pts).color(i)
+#[cfg(test)]
+mod tests {
+    //! The planner's rounds on a synthetic study whose values follow F = 1 + 1/M exactly inside
+    //! the pilots' box: a choice beyond the box is tested by its own run (a jump there is a
+    //! miss, and the next round pilots one level finer), and a refusal beyond the pilots
+    //! proposes a next round at half the needed resolution.
+    use super::*;
+    use contactlab::model::quasistatic::scheme::TimeScheme;
+    use std::collections::BTreeMap;
+
+    /// F(M, N) = 1 + 1/M, plus `jump` beyond M = 8 (an effect the pilots at M ≤ 8 cannot see).
+    struct Synthetic {
+        jump: f64,
+    }
+
+    impl Study for Synthetic {
+        type Scheme = TimeScheme;
+        fn default_scheme(&self) -> TimeScheme {
+            TimeScheme::Implicit
+        }
+        fn run_level(&self, m: usize, n: usize, s: TimeScheme, _: bool) -> Result<Level, String> {
+            let mut values = BTreeMap::new();
+            let jump = if m > 8 { self.jump } else { 0.0 };
+            values.insert("F".to_string(), 1.0 + 1.0 / m as f64 + jump);
+            Ok(Level {
+                elements: m,
+                steps: n,
+                h: 1.0 / m as f64,
+                k: 1.0 / n as f64,
+                scheme: s.to_string(),
+                errors: BTreeMap::new(),
+                values,
+                u_end: 0.0,
+                cpu_seconds: 0.0,
+                thread_seconds: 0.0,
+                stats: serde_json::Value::Null,
             })
-            .collect()
+        }
     }
 
-    /// The work–precision figure: the pilots per scheme, the chosen scheme's model along its
-    /// cheapest path, the target and the chosen point (predicted and achieved).
-    pub fn figure(&self, title: &str) -> Figure {
-        let mut fig = Figure::new(format!(
-            "{title}: plan for {} ≤ {:e}",
-            self.request.functional, self.request.target
-        ))
-        .log_log()
-        .x_label(match self.request.cost {
-            CostMeasure::Seconds => "cost (CPU s)",
-            CostMeasure::Work => "cost (work: M·N)",
-        })
-        .y_label(format!("error ({})", self.request.functional));
-        for series in self.pilot_series("pilots") {
-            fig = fig.series(series);
+    impl Plannable for Synthetic {
+        fn base(&self) -> (usize, usize) {
+            (8, 8)
         }
-        fig = fig.horizontal_line(self.request.target, "target");
-        if let Decision::Chosen { choice } = &self.decision {
-            fig = fig.series(Series::markers(
-                "chosen (predicted)",
-                [(choice.predicted_cost, choice.predicted_error)],
-            ));
-            if let Some(x) = &self.executed {
-                fig = fig.series(Series::markers(
-                    "chosen (achieved)",
-                    [(x.measured_cost, x.achieved_error)],
-                ));
-            }
+        fn final_time(&self) -> f64 {
+            1.0
         }
-        fig
+        fn schemes(&self) -> Vec<TimeScheme> {
+            vec![TimeScheme::Implicit]
+        }
+        fn stability_bound(&self, _: TimeScheme) -> Option<f64> {
+            None
+        }
+        fn expected_orders(&self, _: TimeScheme, _: &str) -> (Option<f64>, Option<f64>) {
+            (None, None)
+        }
+        fn floor(&self, f: &str, pilots: &[Level]) -> f64 {
+            value_floor(f, pilots)
+        }
+        fn seconds(&self, _: usize, _: usize, _: TimeScheme) -> Result<f64, String> {
+            Ok(1.0)
+        }
+        fn work(&self, m: usize, n: usize) -> f64 {
+            (m * n) as f64
+        }
     }
 
-    /// A Markdown summary: the request, the models, the decision and the run.
-    pub fn markdown(&self) -> String {
-        let mut s = format!(
-            "# Plan: {} ≤ {:e}\n\nPilots: {} runs at (M₀/4 … M₀) × (N₀/4 … N₀), (M₀, N₀) = ({}, {}){}.\n\n",
-            self.request.functional,
-            self.request.target,
-            self.pilots.len(),
-            self.base.0,
-            self.base.1,
-            if self.rounds.len() > 1 {
-                format!(
-                    " (pilot rounds from {}; the decision is the round from ({}, {}))",
-                    self.rounds
-                        .iter()
-                        .map(|(m, n)| format!("({m}, {n})"))
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                    self.base.0,
-                    self.base.1
-                )
-            } else {
-                String::new()
-            }
-        );
-        s.push_str("| scheme | error model | cost model | expected (p, q) | stability bound | used |\n|---|---|---|---|---|---|\n");
-        for m in &self.schemes {
-            let cost = m.cost_model.as_ref().map_or("—".into(), |c| {
-                format!(
-                    "t = {:.2e} M^{:.2} N^{:.2} (a ∈ [{:.2}, {:.2}], b ∈ [{:.2}, {:.2}])",
-                    c.log_constant.exp(),
-                    c.a,
-                    c.b,
-                    c.a_ci.0,
-                    c.a_ci.1,
-                    c.b_ci.0,
-                    c.b_ci.1
-                )
-            });
-            let o = |v: Option<f64>| v.map_or("—".into(), |x| format!("{x}"));
-            s.push_str(&format!(
-                "| {} | {} | {} | ({}, {}) | {} | {} |\n",
-                m.scheme,
-                m.error_model.as_ref().map_or("—".into(), |e| e.describe()),
-                cost,
-                o(m.expected_orders.0),
-                o(m.expected_orders.1),
-                m.stability_bound
-                    .map_or("—".into(), |b| format!("k ≤ {b:.4}")),
-                m.rejected.as_deref().unwrap_or("yes")
-            ));
+    fn request(target: f64, rounds: usize) -> PlanRequest {
+        PlanRequest {
+            target,
+            functional: "F".into(),
+            schemes: None,
+            cost: CostMeasure::Work,
+            rounds,
         }
-        if self.pilots.iter().any(|x| x.value.is_some()) {
-            s.push_str(
-                "\nNo exact solution: self-convergence. Each scheme's pilot values are fitted by \
-                 F ≈ F* + a h^p + b k^q; a pilot's error is |F − F*| and the predicted error \
-                 |a| h^p + |b| k^q. The GCI of the diagonal pilots (ratio 2):\n\n\
-                 | scheme | F* | GCI of the finest diagonal pilot | observed order | convergence |\n|---|---|---|---|---|\n",
-            );
-            for m in &self.schemes {
-                let fstar = match &m.error_model {
-                    Some(ErrorModel::Extrapolated(x)) => format!("{:.6e}", x.value),
-                    _ => "—".into(),
-                };
-                let (gci, order, conv) = m.gci.as_ref().map_or(
-                    ("—".to_string(), "—".to_string(), "—".to_string()),
-                    |g| {
-                        (
-                            g.gci_fine_percent
-                                .map_or("—".into(), |v| format!("{v:.3} %")),
-                            g.order.map_or("—".into(), |o| format!("{o:.3}")),
-                            format!("{:?}", g.convergence),
-                        )
-                    },
-                );
-                s.push_str(&format!(
-                    "| {} | {fstar} | {gci} | {order} | {conv} |\n",
-                    m.scheme
-                ));
-            }
-        }
-        s.push_str("\n## Decision\n\n");
-        match &self.decision {
-            Decision::Chosen { choice } | Decision::PilotMeets { choice } => {
-                let what = if matches!(self.decision, Decision::Chosen { .. }) {
-                    "chosen"
-                } else {
-                    "a pilot already meets the target"
-                };
-                s.push_str(&format!(
-                    "{what}: **{}**, M = {}, N = {} (h = {:.4e}, k = {:.4e}); predicted error {:.3e}, predicted cost {:.3e}\n",
-                    choice.scheme, choice.elements, choice.steps, choice.h, choice.k,
-                    choice.predicted_error, choice.predicted_cost
-                ));
-            }
-            Decision::BelowFloor { floor } => s.push_str(&format!(
-                "refused: the target is below the float64 floor of this functional, ≈ {floor:.2e}\n"
-            )),
-            Decision::BeyondPilots { needed } => s.push_str(&match needed {
-                Some(c) => format!(
-                    "refused: the target needs M = {}, N = {} ({}), beyond what the pilots support; run the planner again from that resolution\n",
-                    c.elements, c.steps, c.scheme
-                ),
-                None => "refused: no resolution within 1000× the pilots meets the target\n".into(),
-            }),
-            Decision::PreAsymptotic { proposed_pilot } => s.push_str(&format!(
-                "refused: no scheme's model describes its pilots (pre-asymptotic, table above); run from M = {}, N = {}\n",
-                proposed_pilot.0, proposed_pilot.1
-            )),
-        }
-        if let Some(x) = &self.executed {
-            match (x.value, x.reference_value) {
-                (Some(v), Some(r)) => s.push_str(&format!(
-                    "\nValue {v:.9e}; its error estimated against F* = {r:.9e}: {:.3e} ({:.2} × target); cost {:.3e} ({:.2} × predicted).\n",
-                    x.achieved_error, x.error_ratio, x.measured_cost, x.cost_ratio
-                )),
-                _ => s.push_str(&format!(
-                    "\nAchieved error {:.3e} ({:.2} × target); cost {:.3e} ({:.2} × predicted).\n",
-                    x.achieved_error, x.error_ratio, x.measured_cost, x.cost_ratio
-                )),
-            }
-        }
-        s
+    }
+
+    #[test]
+    fn a_choice_its_run_confirms_is_chosen() {
+        let r = plan(&Synthetic { jump: 0.0 }, &request(0.06, 1)).unwrap();
+        let Decision::Chosen { choice } = &r.decision else {
+            panic!("{:?}", r.decision)
+        };
+        // 1/M ≤ 0.85 × 0.06: M = 20, beyond the pilots (M ≤ 8), inside 4× them
+        assert_eq!(choice.elements, 20);
+        let x = r.executed.as_ref().unwrap();
+        assert!(x.deviation.unwrap() < 1e-6, "{x:?}");
+    }
+
+    #[test]
+    fn a_choice_its_run_contradicts_is_missed_and_piloted_again_one_level_finer() {
+        let study = Synthetic { jump: 0.05 };
+        let r = plan(&study, &request(0.06, 1)).unwrap();
+        let Decision::Missed {
+            choice,
+            proposed_pilot,
+        } = &r.decision
+        else {
+            panic!("{:?}", r.decision)
+        };
+        assert_eq!((choice.elements, *proposed_pilot), (20, (16, 16)));
+        // the run gave 1 + 1/20 + 0.05 where the model said 1 + 1/20: off by 1 × the error
+        let d = r.executed.as_ref().unwrap().deviation.unwrap();
+        assert!((d - 1.0).abs() < 1e-6, "{d}");
+        // with a second round the pilots at M = 4 … 16 see the jump: the choice is not the
+        // missed one
+        let r = plan(&study, &request(0.06, 2)).unwrap();
+        assert_eq!(r.rounds, vec![(8, 8), (16, 16)]);
+        assert!(!matches!(r.decision, Decision::Chosen { ref choice } if choice.elements == 20));
+    }
+
+    #[test]
+    fn the_round_after_a_refusal_beyond_the_pilots_starts_at_half_the_needed_resolution() {
+        // M needed 100 from pilots at 8: the next round's finest pilot at 50 (the needed point
+        // at twice it); N needed 12 from pilots at 8: within twice them, kept
+        assert_eq!(next_base((100, 12), (8, 8)), (50, 12));
+        assert_eq!(next_base((3, 3), (8, 8)), (4, 4));
     }
 }

@@ -8,8 +8,9 @@
 //!
 //! Blocks: `evidence` (per case: verdict, gates, the fitted rates grouped by expected rate),
 //! `benchmarks` (criterion's means against the budgets, and the ratio budgets), `tiers` (each
-//! tier's cases and their recorded time) and `multibody_conservation` (the conservation table of
-//! `multibody_impact`).
+//! tier's cases and their recorded time), `multibody_conservation` (the conservation table of
+//! `multibody_impact`), the planner's tables (`rod_plan`, `plane_plan`, `plane_plan_self`,
+//! `dynamic_plan_self`) and `plan_example` (the README's `verify plan` command's output).
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -276,6 +277,21 @@ pub fn case_table(
     Ok(s)
 }
 
+/// The `plan_example` block: the models table and the decision of `reports/plan_example/plan.md`
+/// (what the README's `verify plan` command writes; a test runs the command and compares).
+pub fn plan_example(reports: &Path) -> Result<String, String> {
+    let path = reports.join("plan_example/plan.md");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let start = text
+        .find("| scheme |")
+        .ok_or_else(|| format!("{}: no models table", path.display()))?;
+    Ok(text[start..]
+        .replace("## Decision\n\n", "Decision: ")
+        .trim_end()
+        .to_string()
+        + "\n")
+}
+
 /// Every block.
 pub fn render(reports: &Path) -> Result<Blocks, String> {
     let mut b = Blocks::new();
@@ -317,6 +333,28 @@ pub fn render(reports: &Path) -> Result<Blocks, String> {
             ],
         )?,
     );
+    b.insert(
+        "dynamic_plan_self".into(),
+        case_table(
+            reports,
+            "dynamic_plan_self",
+            "The planner by self-convergence",
+            &[
+                "target",
+                "answer",
+                "pilot rounds",
+                "scheme",
+                "M",
+                "N",
+                "predicted error",
+                "estimated error (pilots' F*)",
+                "achieved error vs F(4M, 4N)",
+                "band U",
+                "achieved / target",
+            ],
+        )?,
+    );
+    b.insert("plan_example".into(), plan_example(reports)?);
     b.insert(
         "multibody_conservation".into(),
         case_table(

@@ -9,4 +9,5 @@ pub mod impact;
 pub mod manufactured;
 pub mod performance;
 pub mod plan;
+pub mod plan_self;
 pub mod signorini_bar;

@@ -38,5 +38,5 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         study: PlaneStudy::from_case(&c.exact, &c.discretization)?,
         base: (c.plan.base[0], c.plan.base[1]),
     };
-    run_targets(&p, &c.plan, "n²·N", ctx, report)
+    run_targets(&p, &c.plan, ctx, report)
 }

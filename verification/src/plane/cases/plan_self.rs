@@ -37,5 +37,5 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
     let c = PlanSelfCase::parse(case).map_err(|e| e.to_string())?;
     let p = PlaneScenePlan::from_table(c.scene.clone(), "[scene]")?
         .with_base((c.plan.base[0], c.plan.base[1]));
-    run_targets_self(&p, &c.plan, "n_x n_y N", ctx, report)
+    run_targets_self(&p, &c.plan, ctx, report)
 }

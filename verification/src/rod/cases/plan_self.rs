@@ -41,5 +41,5 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
         study,
         base: (c.plan.base[0], c.plan.base[1]),
     };
-    run_targets_self(&p, &c.plan, "M·N", ctx, report)
+    run_targets_self(&p, &c.plan, ctx, report)
 }
