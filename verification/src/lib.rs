@@ -28,3 +28,8 @@ pub mod scene_keys;
 pub mod stats;
 pub mod suite;
 pub mod vtk;
+
+/// The speed–accuracy planner (docs/planner.md): `plan::plan(&study, &request)` for any family's
+/// [`plan::Plannable`] — the rod, the plane and dynamic manufactured problems, and rod, plane,
+/// dynamic and multibody scenes ([`registry::plan_scene`] reads a scene file).
+pub use crate::core::plan;

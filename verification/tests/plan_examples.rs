@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use contactlab_verify::core::plan::{CostMeasure, PlanRequest};
+use contactlab_verify::plan::{CostMeasure, PlanRequest};
 use contactlab_verify::registry::plan_scene;
 
 fn root() -> PathBuf {
