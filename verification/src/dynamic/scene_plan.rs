@@ -36,8 +36,8 @@ use contactlab::model::dynamic::solver::DynamicSolution;
 use contactlab::scene::dynamic::{DynamicScene, DynamicSceneFile, SceneBody};
 
 use crate::core::cpu_clock::min_thread_cpu_seconds;
+use crate::core::plan::impact::ImpactScenePlan;
 use crate::core::plan::refine::{BodyCounts, RefinedScene};
-use crate::core::plan::{value_floor, Plannable};
 use crate::core::study::Study;
 use crate::core::sweep::{Level, Measured};
 
@@ -335,7 +335,7 @@ impl Study for DynamicScenePlan {
     }
 }
 
-impl Plannable for DynamicScenePlan {
+impl ImpactScenePlan for DynamicScenePlan {
     fn base(&self) -> (usize, usize) {
         self.base
     }
@@ -348,42 +348,18 @@ impl Plannable for DynamicScenePlan {
         self.schemes.clone()
     }
 
-    fn stability_bound(&self, _scheme: PlanScheme) -> Option<f64> {
-        None
+    fn refined(&self) -> &RefinedScene {
+        &self.scene
     }
 
-    /// None: an impact's regularity is the scene's (module docs).
-    fn expected_orders(
+    fn time_loop_seconds(
         &self,
-        _scheme: PlanScheme,
-        _functional: &str,
-    ) -> (Option<f64>, Option<f64>) {
-        (None, None)
-    }
-
-    /// One timing of the time loop (a run of a scene is long against the clock's noise).
-    fn seconds(&self, elements: usize, steps: usize, scheme: PlanScheme) -> Result<f64, String> {
+        elements: usize,
+        steps: usize,
+        scheme: PlanScheme,
+    ) -> Result<f64, String> {
         let scene = self.scene(elements, steps, scheme)?;
         let solver = scene.solver().map_err(|e| e.to_string())?;
         min_thread_cpu_seconds(1, || solver.solve().map(|_| ()).map_err(|e| e.to_string()))
-    }
-
-    /// The run's own CPU time on its thread (a pilot is not run again to be timed).
-    fn run_seconds(&self, level: &Level) -> Option<f64> {
-        Some(level.thread_seconds)
-    }
-
-    /// nodes × N: a step's cost grows with the mesh (each Newton iteration a sparse solve).
-    fn work(&self, elements: usize, steps: usize) -> f64 {
-        self.scene.work(elements, steps)
-    }
-
-    fn work_label(&self) -> &'static str {
-        "nodes·N"
-    }
-
-    /// 100 ε times the largest magnitude of the functional over the pilots.
-    fn floor(&self, functional: &str, pilots: &[Level]) -> f64 {
-        value_floor(functional, pilots)
     }
 }

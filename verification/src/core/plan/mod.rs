@@ -28,6 +28,7 @@
 
 pub mod case;
 pub mod choose;
+pub mod impact;
 pub mod model;
 pub mod refine;
 pub mod render;
