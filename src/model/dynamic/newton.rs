@@ -478,6 +478,7 @@ pub fn solve_stage(
                 iterations: iteration,
                 residual: relative,
                 tolerance: params.tolerance,
+                floor: FLOOR_FACTOR * params.tolerance,
             });
         }
         // 4. the Newton step with the new sets

@@ -907,6 +907,7 @@ pub fn solve_step(
         iterations: params.max_iterations,
         residual: last * params.tolerance,
         tolerance: params.tolerance,
+        floor: 100.0 * params.tolerance,
     })
 }
 

@@ -17,7 +17,8 @@ use crate::solve::sparse_cholesky::{CholeskyWorkspace, SparseCholesky};
 /// Parameters of the full Newton method.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonParams {
-    /// Stop when ‖R‖∞ ≤ tolerance · (‖F‖∞ + ‖internal forces‖∞ + ‖contact forces‖∞).
+    /// Stop when ‖R‖∞ ≤ tolerance · (‖F‖∞ + ‖internal forces‖∞ + ‖contact forces‖∞), or at the
+    /// residual's round-off floor (see [`NewtonStep`]).
     pub relative_tolerance: f64,
     pub max_iterations: usize,
 }
@@ -41,12 +42,22 @@ pub struct NewtonStep {
     dw: Vec<f64>,
     trial: Vec<f64>,
     pub factorizations: usize,
+    /// The round-off floor of ‖R‖∞ relative to its scale: (√q + 2) ε, q the largest number of
+    /// terms summed into one row (element forces, contact forces, the load).
+    floor: f64,
+    /// Solves stopped at the round-off floor (no decrease along the Newton direction).
+    pub floor_stops: usize,
 }
 
 /// Where a Newton solve stopped.
 #[derive(Debug, Clone, PartialEq)]
 pub enum NewtonFailure {
-    NotConverged { iterations: usize, residual: f64 },
+    /// `residual` and `floor` relative to the residual's scale.
+    NotConverged {
+        iterations: usize,
+        residual: f64,
+        floor: f64,
+    },
     Singular(SolveError),
     NonFinite,
 }
@@ -57,6 +68,20 @@ impl NewtonStep {
         let chol = SparseCholesky::analyze(&dofs.pattern, &[], "Newton Jacobian")?;
         let n = dofs.n_solved();
         let ws = chol.workspace(1);
+        let mut terms = vec![1usize; n];
+        for el in &dofs.element_dofs {
+            for i in el.iter().flatten() {
+                terms[*i] += 1;
+            }
+        }
+        for pt in &dofs.contact_points {
+            for &(d, _) in &pt.entries {
+                if let Some(i) = dofs.solved[d] {
+                    terms[i] += 1;
+                }
+            }
+        }
+        let q = terms.iter().copied().max().unwrap_or(1) as f64;
         Ok(Self {
             chol,
             ws,
@@ -65,6 +90,8 @@ impl NewtonStep {
             dw: vec![0.0; n],
             trial: vec![0.0; n],
             factorizations: 0,
+            floor: (q.sqrt() + 2.0) * f64::EPSILON,
+            floor_stops: 0,
         })
     }
 
@@ -190,13 +217,19 @@ impl NewtonStep {
             if !r0.is_finite() {
                 return Err(NewtonFailure::NonFinite);
             }
-            if r0 <= params.relative_tolerance * scale.max(f64::MIN_POSITIVE) {
+            let relative = r0 / scale.max(f64::MIN_POSITIVE);
+            if relative <= params.relative_tolerance {
+                return Ok(it);
+            }
+            if relative <= self.floor {
+                self.floor_stops += 1;
                 return Ok(it);
             }
             if it == params.max_iterations {
                 return Err(NewtonFailure::NotConverged {
                     iterations: it,
-                    residual: r0,
+                    residual: relative,
+                    floor: self.floor,
                 });
             }
             self.chol
@@ -217,7 +250,16 @@ impl NewtonStep {
                 self.assemble(problem, dofs, u_prev, &trial, theta_k, load, tau, false);
                 self.trial = trial;
                 let r1: f64 = self.res.iter().map(|v| v * v).sum::<f64>().sqrt();
-                if r1 <= (1.0 - 1e-4 * lambda) * r0_2 || lambda < 1e-6 {
+                if r1 <= (1.0 - 1e-4 * lambda) * r0_2 {
+                    break;
+                }
+                if lambda < 1e-6 {
+                    if r1 >= r0_2 {
+                        // No decrease along the Newton direction even at λ = 2⁻²⁰: the residual
+                        // is at its round-off, whatever the estimate of the floor says.
+                        self.floor_stops += 1;
+                        return Ok(it + 1);
+                    }
                     break;
                 }
                 lambda *= 0.5;

@@ -363,12 +363,14 @@ impl PlaneSolver {
                             NewtonFailure::NotConverged {
                                 iterations,
                                 residual,
+                                floor,
                             } => SolveError::NewtonNotConverged {
                                 step: n,
                                 time: t,
                                 iterations,
                                 residual,
                                 tolerance: self.params.newton.relative_tolerance,
+                                floor,
                             },
                             NewtonFailure::Singular(e) => e,
                             NewtonFailure::NonFinite => SolveError::NonFinite {
@@ -380,6 +382,7 @@ impl PlaneSolver {
                             },
                         })?;
                     stats.factorizations += newton.factorizations - before;
+                    stats.floor_stops = newton.floor_stops;
                     // contact state for the observer
                     if let Some(c) = &self.problem.contact {
                         for (g, pt) in self.dofs.contact_points.iter().enumerate() {
@@ -435,6 +438,8 @@ impl PlaneSolver {
                         stats.factorizations += 1;
                     }
                     stats.contact_factorizations = stats.contact_factorizations.max(contact_fact);
+                    stats.floor_stops =
+                        self.condensed.values().map(|c| c.contact.floor_stops).sum();
                     match outcome {
                         Ok((a, it)) => {
                             alpha = a;
@@ -462,6 +467,7 @@ impl PlaneSolver {
                         Err(ContactFailure::NotConverged {
                             iterations,
                             residual,
+                            floor,
                         }) => {
                             return Err(SolveError::NewtonNotConverged {
                                 step: n,
@@ -469,6 +475,7 @@ impl PlaneSolver {
                                 iterations,
                                 residual,
                                 tolerance: params.relative_tolerance,
+                                floor,
                             })
                         }
                         Err(ContactFailure::NonFinite) => {

@@ -19,6 +19,9 @@ pub struct PlaneStats {
     pub contact_factorizations: usize,
     pub newton_iterations: usize,
     pub max_newton_iterations: usize,
+    /// Newton solves that stopped at the computed round-off floor of their residual, above the
+    /// requested tolerance (converged: the residual cannot be computed more accurately).
+    pub floor_stops: usize,
     /// Steps skipped for lack of equilibrium (with `start_at_first_equilibrium`).
     pub skipped_steps: Vec<usize>,
     /// Rigid motions left free by Γ1 (carried by the contact).
