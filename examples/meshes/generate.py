@@ -38,3 +38,7 @@ write("unit_square.geo", os.path.join(HERE, "unit_square_8_v22.msh"), version=2.
 for geo in ("bimaterial_strip", "notched_block", "o_ring"):
     if os.path.exists(os.path.join(HERE, geo + ".geo")):
         write(geo + ".geo", os.path.join(HERE, geo + ".msh"))
+# the plane family's envelope meshes: a slanted block with a hole, ~400, ~4 000 and ~7 500 nodes
+write("holed_block.geo", os.path.join(HERE, "holed_block.msh"), numbers={"h": 0.3})
+write("holed_block.geo", os.path.join(HERE, "holed_block_4k.msh"), numbers={"h": 0.084})
+write("holed_block.geo", os.path.join(HERE, "holed_block_8k.msh"), numbers={"h": 0.06})

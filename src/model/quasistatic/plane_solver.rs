@@ -202,6 +202,33 @@ impl PlaneSolver {
             .unwrap_or(k)
     }
 
+    /// The explicit scheme with linear laws is stable while k λ_max(A⁻¹B) < 2, and λ_max is at most
+    /// the largest constitutive ratio max(b2/a2, (2b1 + b2)/(2a1 + a2)) over the elements
+    /// (docs/quasistatic.md): a largest step at or above 2 / ratio may be unstable, stated here
+    /// (the iterates then grow by |1 − kλ| per step; a run long enough overflows into a typed
+    /// error, a short one would end quietly).
+    fn explicit_step_warning(&self) -> Option<String> {
+        if self.scheme != TimeScheme::Explicit || !self.problem.is_linear() {
+            return None;
+        }
+        let ratio = (0..self.problem.mesh.triangles().len())
+            .filter_map(|e| {
+                let a = self.problem.viscosity_of(e).as_linear()?;
+                let b = self.problem.elasticity_of(e).as_linear()?;
+                Some(crate::model::quasistatic::plane_stability::constitutive_ratio(a, b))
+            })
+            .fold(0.0f64, f64::max);
+        let k = self.grid.k_max();
+        (k * ratio >= 2.0).then(|| {
+            format!(
+                "explicit scheme: the largest step k = {k:e} is at or above 2 / max(b2/a2, (2b1 + b2)/(2a1 + a2)) = {:e}, \
+                 the stability bound's guaranteed range; the iterates may grow by |1 − kλ| per step \
+                 (use more steps, or scheme = \"midpoint\" or \"implicit\")",
+                2.0 / ratio
+            )
+        })
+    }
+
     /// The factored condensed operator for step size k (built on first use).
     fn condensed_for(&mut self, k: f64) -> Result<&mut CondensedStep, SolveError> {
         let theta_k = self.scheme.theta() * k;
@@ -302,6 +329,7 @@ impl PlaneSolver {
             dofs: ns,
             contact_points: nc,
             free_rigid_motions: q,
+            warnings: self.explicit_step_warning().into_iter().collect(),
             ..Default::default()
         };
         let mut u: Vec<f64> = (0..2 * nn)

@@ -22,6 +22,8 @@ pub struct PlaneStats {
     /// Newton solves that stopped at the computed round-off floor of their residual, above the
     /// requested tolerance (converged: the residual cannot be computed more accurately).
     pub floor_stops: usize,
+    /// What the run could not rule out (e.g. an explicit step above the stability bound).
+    pub warnings: Vec<String>,
     /// Steps skipped for lack of equilibrium (with `start_at_first_equilibrium`).
     pub skipped_steps: Vec<usize>,
     /// Rigid motions left free by Γ1 (carried by the contact).

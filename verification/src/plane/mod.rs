@@ -9,6 +9,7 @@
 //! | `plane_stability` | [`cases::stability`] | the explicit bound k λ_max(A⁻¹B) < 2 |
 //! | `plane_paths` | [`cases::paths`] | the condensed and Newton paths agree; error against cost of both |
 //! | `plane_performance` | [`cases::performance`] | the Test 2D time loop and its cost against the sparse solve |
+//! | `plane_envelope` | [`cases::envelope`] | the edges of the range: Gmsh blocks with a hole and fine rectangles, many steps, both contact integrations — every point answers on both paths and they agree to round-off; one factorization per uniform grid; typed errors past the range |
 //! | `plane_gmsh` | [`cases::gmsh`] | Gmsh meshes: the three formats against our own rectangle, rates on the files' meshes, the two-material strip's closed form, every mesh check on crafted files |
 
 pub mod cases;
@@ -47,6 +48,7 @@ impl Family for Plane {
             "plane_gmsh",
             "plane_plan",
             "plane_plan_self",
+            "plane_envelope",
         ]
     }
 
@@ -60,6 +62,7 @@ impl Family for Plane {
             "plane_gmsh" => cases::gmsh::parse(case).map(|_| ()),
             "plane_plan" => cases::plan::PlanCase::parse(case).map(|_| ()),
             "plane_plan_self" => cases::plan_self::PlanSelfCase::parse(case).map(|_| ()),
+            "plane_envelope" => cases::envelope::EnvelopeCase::parse(case).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -74,6 +77,7 @@ impl Family for Plane {
             "plane_gmsh" => cases::gmsh::run(case, ctx, report),
             "plane_plan" => cases::plan::run(case, ctx, report),
             "plane_plan_self" => cases::plan_self::run(case, ctx, report),
+            "plane_envelope" => cases::envelope::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

@@ -197,12 +197,18 @@ pub fn write_scene(scene: &PlaneScene, source: &str, out: &Path) -> Result<Strin
         String::new()
     };
     Ok(format!(
-        "{source}: {} path, {} dofs, {} steps ({} skipped for lack of equilibrium), {} sparse factorizations, {} Newton iterations; von Mises max at the last snapshot {vm_max:.4}{bound_text}{vtk_text}",
+        "{source}: {} path, {} dofs, {} steps ({} skipped for lack of equilibrium), {} sparse factorizations, {} Newton iterations ({} solves stopped at the round-off floor); von Mises max at the last snapshot {vm_max:.4}{bound_text}{vtk_text}{}",
         sol.stats.path,
         sol.stats.dofs,
         sol.stats.steps,
         sol.stats.skipped_steps.len(),
         sol.stats.factorizations,
-        sol.stats.newton_iterations
+        sol.stats.newton_iterations,
+        sol.stats.floor_stops,
+        sol.stats
+            .warnings
+            .iter()
+            .map(|w| format!("\nwarning: {w}"))
+            .collect::<String>()
     ))
 }

@@ -2,6 +2,7 @@
 //! its checks, and its runner.
 
 pub mod convergence;
+pub mod envelope;
 pub mod gmsh;
 pub mod paper_test_2d;
 pub mod paths;
