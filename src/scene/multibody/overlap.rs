@@ -51,10 +51,13 @@ pub struct Overlap {
     pub tolerance: f64,
 }
 
+/// A triangle's bounding box with its corners.
+type TriangleEntry = GeomWithData<Rectangle<[f64; 2]>, [[f64; 2]; 3]>;
+
 /// A body's triangles in the configuration u, as an R*-tree of their boxes, and the segments of
 /// the boundary part facing the other body.
 struct BodyGeometry {
-    tree: RTree<GeomWithData<Rectangle<[f64; 2]>, [[f64; 2]; 3]>>,
+    tree: RTree<TriangleEntry>,
     segments: Vec<[[f64; 2]; 2]>,
 }
 
