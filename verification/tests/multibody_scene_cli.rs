@@ -56,6 +56,15 @@ fn block_on_block_writes_solution_plots_and_paraview_series() {
     assert_eq!(sol["steps_completed"], 300);
     assert_eq!(sol["records"].as_array().map(Vec::len), Some(301));
     assert_eq!(sol["history"].as_array().map(Vec::len), Some(301));
+    // beside the raw force, the two-step mean and the step impulse of each section, in the JSON
+    // and in history.csv (a header and one row per record)
+    let h = &sol["history"][150];
+    for key in ["normal_force", "normal_force_mean", "normal_impulse"] {
+        assert_eq!(h[key].as_array().map(Vec::len), Some(2), "{key}");
+    }
+    let csv = std::fs::read_to_string(out.join("history.csv")).expect("history.csv");
+    assert_eq!(csv.lines().count(), 302);
+    assert!(csv.starts_with("step,time,pair0_normal_force_raw,pair0_normal_force_mean,"));
     assert_eq!(sol["bodies"].as_array().map(Vec::len), Some(2));
     assert_eq!(sol["pairs"].as_array().map(Vec::len), Some(2));
     assert_eq!(sol["claims"]["momentum"], serde_json::json!([true, false]));

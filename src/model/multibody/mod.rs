@@ -18,6 +18,7 @@
 pub mod audit;
 pub mod bodies;
 pub mod constraint;
+pub mod history;
 pub mod invariants;
 pub mod scheme;
 pub mod search;

@@ -195,6 +195,14 @@ pub struct ContactPairSection {
     /// (default 0: frictionless, no friction code runs).
     #[serde(default)]
     pub friction: f64,
+    /// What happens when the pair's bodies overlap at t = 0 (a slave node inside the master body
+    /// or below the foundation, or a master-part node inside the slave body, deeper than the
+    /// round-off tolerance 1e-12 × the longest segment + 8 ε × the largest coordinate):
+    /// `"error"` (the default) refuses the scene, naming the pair, the node and the depth;
+    /// `"resolve"` starts with each penetrating slave node moved onto its closest point of the
+    /// master's boundary (an initial displacement, whose stored energy is part of E₀).
+    #[serde(default)]
+    pub initial_overlap: InitialOverlap,
 }
 
 /// One side of a contact pair: a body and a part of its boundary.
@@ -235,6 +243,18 @@ pub enum Pass {
     /// contact patch test) but it over-constrains curved ones with Lagrange multipliers (the
     /// active set may cycle).
     Two,
+}
+
+/// What a `[[contact_pair]]` does when its bodies overlap at t = 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InitialOverlap {
+    /// The scene is refused, naming the pair, the node and the depth (the default).
+    #[default]
+    Error,
+    /// Each penetrating slave node starts on its closest point of the master's boundary (an
+    /// initial displacement; the run starts with the stored energy it carries).
+    Resolve,
 }
 
 /// How a pair's constraint g ≥ 0 is enforced.

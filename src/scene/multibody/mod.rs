@@ -47,6 +47,8 @@
 //! pass = "single"              # "single" | "two" (the roles exchanged as a second pair)
 //! enforcement = "lagrange"     # "lagrange" | "penalty" (with stiffness = ε > 0)
 //! friction = 0.0               # Coulomb's μ ≥ 0 (needs lagrange)
+//! initial_overlap = "error"    # "error" | "resolve": bodies overlapping at t = 0 are refused,
+//!                              # or start with the slave nodes moved onto the master
 //!
 //! [time]
 //! final_time = 1.0
@@ -71,6 +73,7 @@
 mod body;
 mod format;
 mod memory;
+mod overlap;
 mod pairs;
 
 use crate::error::{require_positive, Error, InputError};
@@ -82,10 +85,11 @@ use crate::model::multibody::solver::{
 use crate::scene::common::{check_model, parse_toml};
 
 pub use format::{
-    BodyMaterialSection, ContactPairSection, EnforcementName, MultibodyBodySection,
+    BodyMaterialSection, ContactPairSection, EnforcementName, InitialOverlap, MultibodyBodySection,
     MultibodyOutputSection, MultibodySceneFile, MultibodySolverSection, MultibodyTimeSection,
     PairFoundationSection, PairSideSection, Pass,
 };
+pub use overlap::{overlaps, Overlap};
 pub use pairs::PairOrigin;
 
 /// A validated multibody scene.
@@ -178,8 +182,15 @@ impl MultibodyScene {
         let bodies = BodySet::new(bodies)?;
         let (pairs, origins) = pairs::pairs(&file.contact_pair, &names, &bodies, &gmsh)?;
         let initial_velocity = body::initial_velocity(&file.body, &bodies)?;
+        let modes: Vec<_> = file
+            .contact_pair
+            .iter()
+            .map(|c| c.initial_overlap)
+            .collect();
+        let initial_displacement =
+            overlap::initial_displacement(&bodies, &pairs, &origins, &names, &modes)?;
         let problem = MultibodyProblem {
-            initial_displacement: vec![0.0; bodies.dofs()],
+            initial_displacement,
             initial_velocity,
             bodies,
             pairs,
@@ -243,3 +254,6 @@ fn params(file: &MultibodySceneFile) -> Result<MultibodyParams, InputError> {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod overlap_tests;

@@ -7,8 +7,11 @@
 //!   W_N, W_T, W_ext, the activation work, the identity residual with its tolerances, the contact
 //!   counts and forces), the [`MultibodySummary`] (drifts over their tolerances: ≤ 1 is
 //!   round-off), the solver statistics, the history (each body's centre-of-mass velocity, each
-//!   section's Σ λ_N and Σ λ_T per step) and the snapshots at `[output] times` (each body's nodal
+//!   section's Σ λ_N — raw, its two-step mean (the accurate force: the raw one alternates from
+//!   step to step at a persistent contact) and the step's impulse — and Σ λ_T per step) and the snapshots at `[output] times` (each body's nodal
 //!   displacement and velocity, the contact states: λ_N, λ_T, λ_N / w, gap, slip, active, stick);
+//! - `history.csv` — the history as a table (step, t, per section the raw and two-step mean
+//!   Σ λ_N, the step impulse and Σ λ_T, per body v_x and v_y);
 //! - a run that stops partway writes `partial_solution.json` instead — the same, as far as the
 //!   run got, with the last state reached, the status `failed` and the typed error with its data
 //!   (step, time, …) — and the error is reported;
@@ -133,6 +136,8 @@ pub fn write_scene(scene: &Scene, source: &str, out: &Path) -> Result<String, St
         .map_err(|e| format!("{source}: {name}: {e}"))?;
     std::fs::write(out.join(name), text)
         .map_err(|e| format!("{}: {e}", out.join(name).display()))?;
+    std::fs::write(out.join("history.csv"), history_csv(scene, &run.history))
+        .map_err(|e| format!("{}: {e}", out.join("history.csv").display()))?;
     plots::write(scene, &title, &run, out).map_err(|e| format!("{source}: {e}"))?;
     let mut text = summary_text(scene, source, &run, &summary);
     if scene.file.output.vtk {
@@ -159,6 +164,42 @@ pub fn write_scene(scene: &Scene, source: &str, out: &Path) -> Result<String, St
             out.join(name).display()
         )),
     }
+}
+
+/// `history.csv`: per step t_n and, per `[[contact_pair]]` section, the raw Σ λ_N (it alternates
+/// from step to step at a persistent contact), its two-step mean (the accurate force), the step's
+/// contact impulse and Σ λ_T; then each body's centre-of-mass velocity.
+fn history_csv(scene: &MultibodyScene, history: &[HistoryRow]) -> String {
+    let mut text = String::from("step,time");
+    for p in 0..scene.file.contact_pair.len() {
+        text.push_str(&format!(
+            ",pair{p}_normal_force_raw,pair{p}_normal_force_mean,pair{p}_normal_impulse,\
+             pair{p}_friction_force"
+        ));
+    }
+    for name in &scene.names {
+        let name = name.replace([',', '"'], "_");
+        text.push_str(&format!(",{name}_vx,{name}_vy"));
+    }
+    text.push('\n');
+    for h in history {
+        text.push_str(&format!("{},{:e}", h.step, h.time));
+        for p in 0..h.normal_force.len() {
+            let at = |v: &[f64]| v.get(p).copied().unwrap_or(f64::NAN);
+            text.push_str(&format!(
+                ",{:e},{:e},{:e},{:e}",
+                h.normal_force[p],
+                at(&h.normal_force_mean),
+                at(&h.normal_impulse),
+                at(&h.friction_force)
+            ));
+        }
+        for v in &h.velocities {
+            text.push_str(&format!(",{:e},{:e}", v[0], v[1]));
+        }
+        text.push('\n');
+    }
+    text
 }
 
 /// The summary paragraph.

@@ -23,6 +23,7 @@ use contactlab::mesh::triangle::{Diagonal, TriangleMesh};
 use contactlab::model::dynamic::bar::MassMatrix;
 use contactlab::model::dynamic::plane_body::{PlaneBody, PlaneBodyData};
 use contactlab::model::multibody::audit::{MultibodyRecord, MultibodySummary};
+use contactlab::model::multibody::history::two_step_mean;
 use contactlab::model::multibody::scheme::MultibodyScheme;
 use contactlab::model::multibody::solver::{MultibodySolution, MultibodySolver};
 use contactlab::model::quasistatic::plane::{DirichletPart, TractionPart};
@@ -121,6 +122,10 @@ pub struct StepHistory {
     /// Σ λ_N and Σ λ_T over the candidates.
     pub normal_force: f64,
     pub friction_force: f64,
+    /// The two-step mean of Σ λ_N, (J_n + J_{n+1})/(2k) with J the step impulses: the accurate
+    /// contact force, where the raw Σ λ_N alternates from step to step
+    /// (`contactlab::model::multibody::history`).
+    pub normal_force_mean: f64,
     /// Active, sticking and slipping constraints.
     pub active: usize,
     pub sticking: usize,
@@ -150,12 +155,18 @@ pub fn run_recorded(solver: &MultibodySolver) -> Result<RecordedRun, String> {
                     .collect(),
                 normal_force: view.record.normal_force,
                 friction_force: view.record.friction_force,
+                normal_force_mean: 0.0,
                 active: view.record.active,
                 sticking: view.record.sticking,
                 slipping: view.record.slipping,
             });
         })
         .map_err(|e| e.to_string())?;
+    let raw: Vec<f64> = history.iter().map(|h| h.normal_force).collect();
+    let mean = two_step_mean(&raw, solver.problem().scheme, solver.step_size());
+    for (h, m) in history.iter_mut().zip(mean) {
+        h.normal_force_mean = m;
+    }
     let summary = solution.summary();
     Ok(RecordedRun {
         solution,

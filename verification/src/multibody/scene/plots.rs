@@ -47,25 +47,34 @@ pub fn write(
     write_triangle_panels_svg(&plots, plots.len().min(3), &out.join("snapshots.svg")).map_err(e)
 }
 
-/// The contact forces per `[[contact_pair]]` section (Σ λ_N solid, Σ λ_T dashed) and each body's
-/// centre-of-mass velocity (v_x solid, v_y dashed) against t.
+/// The contact forces per `[[contact_pair]]` section (the two-step mean of Σ λ_N solid, the raw
+/// Σ λ_N as markers — it alternates from step to step at a persistent contact, docs/multibody.md
+/// — and Σ λ_T dashed) and each body's centre-of-mass velocity (v_x solid, v_y dashed) against t.
 fn contact_figures(scene: &MultibodyScene, title: &str, run: &SceneRun) -> Vec<Figure> {
     let mut forces = Figure::new(format!("{title}: contact forces"))
         .x_label("t")
-        .y_label("Σ λ_N (solid), Σ λ_T (dashed)");
+        .y_label("two-step mean Σ λ_N (solid), raw Σ λ_N (markers), Σ λ_T (dashed)");
     for (p, c) in scene.file.contact_pair.iter().enumerate() {
         let master = c
             .master
             .as_ref()
             .map_or("foundation".to_string(), |m| m.body.clone());
         let label = format!("pair {p}: {} on {master}", c.slave.body);
-        forces = forces.series(
-            Series::line(
-                format!("{label}: λ_N"),
-                run.history.iter().map(|h| (h.time, h.normal_force[p])),
+        forces = forces
+            .series(
+                Series::line(
+                    format!("{label}: two-step mean λ_N"),
+                    run.history.iter().map(|h| (h.time, h.normal_force_mean[p])),
+                )
+                .color(p),
             )
-            .color(p),
-        );
+            .series(
+                Series::markers(
+                    format!("{label}: raw λ_N"),
+                    run.history.iter().map(|h| (h.time, h.normal_force[p])),
+                )
+                .color(p),
+            );
         if c.friction > 0.0 {
             forces = forces.series(
                 Series::line(

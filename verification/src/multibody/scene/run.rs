@@ -1,10 +1,12 @@
 //! A multibody scene's run, recorded step by step so that a run that stops partway still has
 //! what it computed: every step's audit record, each body's centre-of-mass velocity and each
-//! `[[contact_pair]]` section's contact forces, the snapshots at the output times (taken as the
+//! `[[contact_pair]]` section's contact forces (raw, two-step mean, step impulse), the snapshots at the output times (taken as the
 //! solver takes them: the step nearest each time) and the last state reached.
 
 use contactlab::error::Error as LabError;
 use contactlab::model::multibody::audit::MultibodyRecord;
+use contactlab::model::multibody::history::{step_impulses, two_step_mean};
+use contactlab::model::multibody::scheme::MultibodyScheme;
 use contactlab::model::multibody::solver::{MultibodySnapshot, MultibodyStats, MultibodyStepView};
 use contactlab::scene::multibody::MultibodyScene;
 use serde::Serialize;
@@ -23,6 +25,28 @@ pub struct HistoryRow {
     /// enforcement Σ ε g₋) and Σ λ_T over its candidates at t_n.
     pub normal_force: Vec<f64>,
     pub friction_force: Vec<f64>,
+    /// Per section: the two-step mean of Σ λ_N, F̄_n = (J_n + J_{n+1})/(2k) — the accurate
+    /// contact force (the raw Σ λ_N of the implicit schemes alternates from step to step about
+    /// it at a persistent contact; `contactlab::model::multibody::history`).
+    pub normal_force_mean: Vec<f64>,
+    /// Per section: the contact impulse J_n of the step ending at t_n (k Σ λ_N for the
+    /// midpoint types, the trapezoidal rule for Newmark).
+    pub normal_impulse: Vec<f64>,
+}
+
+/// Fills the history's two-step mean forces and step impulses from its raw forces, section by
+/// section (a run that stopped: over the steps it completed).
+fn add_means(history: &mut [HistoryRow], scheme: MultibodyScheme, k: f64) {
+    let sections = history.first().map_or(0, |h| h.normal_force.len());
+    for s in 0..sections {
+        let raw: Vec<f64> = history.iter().map(|h| h.normal_force[s]).collect();
+        let mean = two_step_mean(&raw, scheme, k);
+        let impulse = step_impulses(&raw, scheme, k);
+        for (h, (m, j)) in history.iter_mut().zip(mean.into_iter().zip(impulse)) {
+            h.normal_force_mean.push(m);
+            h.normal_impulse.push(j);
+        }
+    }
 }
 
 /// How a run ended.
@@ -120,6 +144,8 @@ pub fn run(scene: &MultibodyScene) -> SceneRun {
                     .collect(),
                 normal_force: normal,
                 friction_force: friction,
+                normal_force_mean: Vec::new(),
+                normal_impulse: Vec::new(),
             });
             taker.take(view, &mut snapshots);
             last = Some(snapshot(view));
@@ -139,6 +165,11 @@ pub fn run(scene: &MultibodyScene) -> SceneRun {
                 .unwrap_or_default(),
         ),
     };
+    add_means(
+        &mut history,
+        scene.problem.scheme,
+        scene.problem.final_time / scene.problem.steps as f64,
+    );
     SceneRun {
         records,
         history,

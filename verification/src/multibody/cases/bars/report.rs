@@ -144,10 +144,20 @@ pub fn plot_histories(
             force.push(
                 Figure::new(title.clone())
                     .x_label("t")
-                    .y_label("N(t) = Σ λ_N")
+                    .y_label("N(t) = Σ λ_N: two-step mean (line), raw (markers)")
                     .series(
-                        Series::line("computed", history.iter().map(|h| (h.time, h.normal_force)))
-                            .color(1),
+                        Series::line(
+                            "computed, two-step mean",
+                            history.iter().map(|h| (h.time, h.normal_force_mean)),
+                        )
+                        .color(1),
+                    )
+                    .series(
+                        Series::markers(
+                            "computed, raw (alternates)",
+                            history.iter().map(|h| (h.time, h.normal_force)),
+                        )
+                        .color(2),
                     )
                     .series(
                         Series::line(

@@ -63,14 +63,16 @@ pub fn snapshot_plots(bodies: &BodySet, snapshots: &[MultibodySnapshot]) -> Vec<
 
 /// Σ λ_N against time for each labelled run.
 pub fn contact_force_figure(title: &str, runs: &[(&str, &Outcome)]) -> Figure {
-    let mut fig = Figure::new(format!("{title}: total normal contact force Σ λ_N"))
-        .x_label("t")
-        .y_label("Σ λ_N");
+    let mut fig = Figure::new(format!(
+        "{title}: total normal contact force Σ λ_N (two-step mean)"
+    ))
+    .x_label("t")
+    .y_label("Σ λ_N, two-step mean");
     for (i, (label, o)) in runs.iter().enumerate() {
         fig = fig.series(
             Series::line(
                 *label,
-                o.run.history.iter().map(|h| (h.time, h.normal_force)),
+                o.run.history.iter().map(|h| (h.time, h.normal_force_mean)),
             )
             .color(i),
         );
