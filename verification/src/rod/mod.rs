@@ -2,6 +2,7 @@
 //!
 //! | kind | file | what it establishes |
 //! |---|---|---|
+//! | `rod_envelope` | [`cases::envelope`] | the edges of the range: M to 10⁵, N to 10⁵, graded meshes, soft and stiff foundation, every scheme — the end displacement equals the scheme's scalar recurrence to round-off; typed errors past the range |
 //! | `rod_convergence` | [`cases::convergence`] | rates in h, k and h + k against exact and manufactured solutions, the joint error model, the paper's pinned values and figures |
 //! | `rod_stability` | [`cases::stability`] | the explicit bound k < 2a/b: predicted against observed amplification |
 //! | `rod_extremes` | [`cases::extremes`] | data at the edge of the admissible range: correct numbers or a clear error |
@@ -45,6 +46,7 @@ impl Family for Rod {
             "rod_discrete_reference",
             "rod_plan",
             "rod_plan_self",
+            "rod_envelope",
         ]
     }
 
@@ -62,6 +64,7 @@ impl Family for Rod {
             }
             "rod_plan" => cases::plan::PlanCase::parse(case).map(|_| ()),
             "rod_plan_self" => cases::plan_self::PlanSelfCase::parse(case).map(|_| ()),
+            "rod_envelope" => cases::envelope::EnvelopeCase::parse(case).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -76,6 +79,7 @@ impl Family for Rod {
             "rod_discrete_reference" => cases::discrete_reference::run(case, ctx, report),
             "rod_plan" => cases::plan::run(case, ctx, report),
             "rod_plan_self" => cases::plan_self::run(case, ctx, report),
+            "rod_envelope" => cases::envelope::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

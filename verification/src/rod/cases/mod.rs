@@ -3,6 +3,7 @@
 
 pub mod convergence;
 pub mod discrete_reference;
+pub mod envelope;
 pub mod extreme_checks;
 pub mod extremes;
 pub mod paper_figures;
