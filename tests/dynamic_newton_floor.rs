@@ -1,6 +1,6 @@
 //! The dynamic Newton method's stopping test (`model::dynamic::newton`): a step has converged when
 //! the sets are unchanged and ‖R‖_∞ ≤ tol · s, or when every free row is within its computed
-//! round-off floor 16 ε Σ|terms of the row| — a stop that the run's statistics count.
+//! round-off floor 32 ε Σ|terms of the row| — a stop that the run's statistics count.
 //!
 //! Setting: a steel block (neo-Hooke, E = 2e11, ρ = 7800) resting under gravity on a compliant
 //! foundation, with tiny steps. The stress of a finite-strain law is computed from C − I and
@@ -61,7 +61,7 @@ fn steel_block_at_rest_converges_at_its_round_off_floor_above_the_old_band() {
         stats.max_newton_residual > 100.0 * 1e-12,
         "the old band would have accepted this run: {stats:?}"
     );
-    // and the floor is what it should be: ε c² / (g h) within a factor of the row's term count
+    // and the floor is what it should be: ε c² / (g h) within the floor factor and the row's term count
     let c2 = 2e11 * 0.7 / (1.3 * 0.4) / 7800.0;
     let predicted = f64::EPSILON * c2 / (9.81 * 0.1 / 16.0);
     assert!(

@@ -175,9 +175,17 @@ impl ElasticBody for BarBody {
         let rho = self.data.density;
         let c = self.data.law.wave_speed(rho);
         for (e, [da, db]) in self.element_dofs.iter().enumerate() {
+            let scale = |f: f64| {
+                let inverse = if f > 0.0 {
+                    (1.0 + f.ln().abs()) / f
+                } else {
+                    0.0
+                };
+                f.abs().powi(3) + inverse
+            };
             let (f0, _) = self.deformation(u0, e);
             let (f1, _) = self.deformation(u1, e);
-            let m = self.data.area * rho * c * c * f0.abs().max(f1.abs()).powi(3);
+            let m = self.data.area * rho * c * c * scale(f0).max(scale(f1));
             for i in [da, db].into_iter().flatten() {
                 out[*i] += m;
             }
