@@ -82,9 +82,8 @@ pub struct BarStudy {
     pub rate_tolerance: f64,
     /// C in |E_T − E_0| ≤ C ε (D E_0 + Σ_j s_j) (module docs).
     pub energy_round_off: f64,
-    /// Whether the recomputed energy is gated at round-off (false for a stiff wall, whose
-    /// contact row Newton resolves only to w r ε |d| per step: the audit's identity, which adds
-    /// the Newton work, is the gate there).
+    /// Whether the recomputed energy is gated at round-off (default true; false would leave the
+    /// audit's identity, which adds the Newton work, as the energy gate).
     #[serde(default = "yes")]
     pub energy_gate: bool,
     pub note: String,
