@@ -194,6 +194,26 @@ pub enum SolveError {
         row: usize,
         pivot: f64,
     },
+    /// The dynamic step's Newton method reached its iteration cap with the residual above both
+    /// the requested tolerance and the residual's computed round-off floor. All three numbers are
+    /// relative to the same scale s (the largest term of R); `row` is the unknown whose residual
+    /// exceeds its own floor the most, by `excess`.
+    #[error(
+        "step {step} (t = {time}): the dynamic step's Newton method did not converge in \
+         {iterations} iterations: relative residual ‖R‖∞/s = {residual:e} above the relative \
+         tolerance {tolerance:e} and the relative round-off floor {floor:e} (unknown {row}'s \
+         residual is {excess:.3e} times its floor)"
+    )]
+    DynamicNewtonNotConverged {
+        step: usize,
+        time: f64,
+        iterations: usize,
+        residual: f64,
+        tolerance: f64,
+        floor: f64,
+        row: usize,
+        excess: f64,
+    },
 }
 
 /// A mesh file (Gmsh `.msh`) that cannot be used: which file, where in it, what is wrong.

@@ -101,6 +101,10 @@ impl ElasticBody for ScaledForce {
         f.iter_mut().for_each(|v| *v *= self.factor);
         ok
     }
+    fn internal_force_terms(&self, u0: &[f64], u1: &[f64], out: &mut [f64]) {
+        self.inner.internal_force_terms(u0, u1, out);
+        out.iter_mut().for_each(|v| *v *= self.factor);
+    }
     fn add_tangent(&self, u: &[f64], scale: f64, values: &mut [f64]) {
         self.inner.add_tangent(u, scale * self.factor, values)
     }

@@ -545,16 +545,18 @@ fn newton_failure_is_a_typed_error_with_step_time_and_residual() {
         .solve()
         .expect_err("one iteration cannot converge");
     match err {
-        Error::Solve(SolveError::NewtonNotConverged {
+        Error::Solve(SolveError::DynamicNewtonNotConverged {
             step,
             time,
             iterations,
             residual,
+            floor,
             ..
         }) => {
             assert!(step >= 1 && time > 0.0 && iterations == 1 && residual > 1e-12);
+            assert!(residual > floor);
         }
-        other => panic!("expected NewtonNotConverged, got {other:?}"),
+        other => panic!("expected DynamicNewtonNotConverged, got {other:?}"),
     }
 }
 

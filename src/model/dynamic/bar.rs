@@ -170,6 +170,28 @@ impl ElasticBody for BarBody {
         true
     }
 
+    fn internal_force_terms(&self, u0: &[f64], u1: &[f64], out: &mut [f64]) {
+        out.iter_mut().for_each(|v| *v = 0.0);
+        let rho = self.data.density;
+        let c = self.data.law.wave_speed(rho);
+        for (e, [da, db]) in self.element_dofs.iter().enumerate() {
+            let scale = |f: f64| {
+                let inverse = if f > 0.0 {
+                    (1.0 + f.ln().abs()) / f
+                } else {
+                    0.0
+                };
+                f.abs().powi(3) + inverse
+            };
+            let (f0, _) = self.deformation(u0, e);
+            let (f1, _) = self.deformation(u1, e);
+            let m = self.data.area * rho * c * c * scale(f0).max(scale(f1));
+            for i in [da, db].into_iter().flatten() {
+                out[*i] += m;
+            }
+        }
+    }
+
     fn add_tangent(&self, u: &[f64], scale: f64, values: &mut [f64]) {
         for e in 0..self.element_dofs.len() {
             let (f, h) = self.deformation(u, e);

@@ -118,6 +118,21 @@ pub trait ElasticBody: Send + Sync + Debug {
     /// F_int(u) into `f`; `false` (and `f` unspecified) for an inadmissible state.
     fn internal_force(&self, u: &[f64], f: &mut [f64]) -> bool;
 
+    /// The round-off scale of each row of the internal force evaluated at the states `u0` and
+    /// `u1` (F_int(u1) when they are equal, F^algo(u0, u1) otherwise), into `out`:
+    ///
+    ///   a_i = Σ_e |e| m_e Σ_J |∂_J φ_a|,   m_e = ρ_e c_e² max over u0, u1 of
+    ///   (|F_e|³ + |F_e| (1 + |ln J_e|)/J_e),
+    ///
+    /// (|F| the Frobenius norm, J = det F, ρ c² = λ + 2μ the longitudinal modulus at rest). The
+    /// stress is computed from C = FᵀF, whose entries are of size |F|², so the strain
+    /// E = (C − I)/2 carries an error ε |F|² whatever the load, the stress ε (λ + 2μ) |F|² and
+    /// Π = F S one |F| more; a law with F⁻ᵀ in its stress (neo-Hooke: μ (F − F⁻ᵀ) + λ ln J F⁻ᵀ,
+    /// |F⁻ᵀ| = |F|/J in 2D) carries ε (λ + 2μ) |F| (1 + |ln J|)/J, large in a strongly compressed
+    /// element. m_e also bounds |Π_e| itself, so ε a_i bounds the round-off of row i of the
+    /// assembled force up to the number of terms summed.
+    fn internal_force_terms(&self, u0: &[f64], u1: &[f64], out: &mut [f64]);
+
     /// Adds `scale` · K_T(u) to `values` (on the pattern).
     fn add_tangent(&self, u: &[f64], scale: f64, values: &mut [f64]);
 

@@ -364,6 +364,34 @@ impl ElasticBody for PlaneBody {
         true
     }
 
+    fn internal_force_terms(&self, u0: &[f64], u1: &[f64], out: &mut [f64]) {
+        out.iter_mut().for_each(|v| *v = 0.0);
+        for (e, el) in self.elements.iter().enumerate() {
+            let rho = self.materials.density(e);
+            let c = self.materials.law(e).wave_speed(rho);
+            let scale = |u: &[f64]| {
+                let f = self.deformation_gradient(u, e);
+                let (n, j) = (f.norm(), f.determinant());
+                // |F|³ (C − I) and, for a law with F⁻ᵀ in its stress (neo-Hooke), |F| (1 + |ln J|)/J
+                let inverse = if j > 0.0 {
+                    n * (1.0 + j.ln().abs()) / j
+                } else {
+                    0.0
+                };
+                n.powi(3) + inverse
+            };
+            let m = el.area * rho * c * c * scale(u0).max(scale(u1));
+            for a in 0..3 {
+                let g = el.grad[a][0].abs() + el.grad[a][1].abs();
+                for comp in 0..2 {
+                    if let Some(i) = self.element_dofs[e][2 * a + comp] {
+                        out[i] += m * g;
+                    }
+                }
+            }
+        }
+    }
+
     fn add_tangent(&self, u: &[f64], scale: f64, values: &mut [f64]) {
         for e in 0..self.elements.len() {
             let f = self.deformation_gradient(u, e);

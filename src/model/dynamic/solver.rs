@@ -69,7 +69,8 @@ pub struct DynamicStats {
     /// Of those, factorizations of an indefinite Jacobian (LBLᵀ fallback; full path only).
     pub indefinite_factorizations: usize,
     pub backtracks: usize,
-    /// Newton solves accepted at their round-off floor (`newton::FLOOR_FACTOR`).
+    /// Newton solves accepted at their computed round-off floor (every free row within
+    /// `newton::FLOOR_FACTOR` ε Σ|terms|) rather than at the requested tolerance.
     pub newton_floor_stops: usize,
     pub stage_b_steps: usize,
     /// Largest final relative residual of a Newton solve.

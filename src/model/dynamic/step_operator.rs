@@ -38,9 +38,12 @@ pub trait StepOperator {
         self.len() == 0
     }
 
-    /// r = R_b(d); returns the round-off scale of r (the largest of its terms), or `None` when d
-    /// gives an inadmissible state (neo-Hooke with det F ≤ 0).
-    fn body_residual(&mut self, d: &[f64], r: &mut [f64]) -> Option<f64>;
+    /// r = R_b(d), and in `terms` the sum of the absolute values of the terms of each row of r —
+    /// inertia, internal force (with its stress's own round-off scale,
+    /// [`ElasticBody::internal_force_terms`]) and the step data b — from which the Newton method
+    /// computes the round-off floor of the row; returns the largest term (the scale of the
+    /// relative test), or `None` when d gives an inadmissible state (neo-Hooke with det F ≤ 0).
+    fn body_residual(&mut self, d: &[f64], r: &mut [f64], terms: &mut [f64]) -> Option<f64>;
 
     /// Starts the Jacobian at d (the body part).
     fn begin_jacobian(&mut self, d: &[f64]);
@@ -107,6 +110,14 @@ pub struct FullStep {
     rows: Vec<Option<Vec<(usize, usize)>>>,
     diag_slots: Vec<usize>,
     factorizations: usize,
+    /// |α M + θ K| and |K| (a linear body), |M| (entrywise), the step data's row terms
+    /// |b_i| + Σ_j |K_ij u_{n−1,j}| (a linear body) and scratch for |d| and force terms.
+    abs_base: Vec<f64>,
+    abs_stiffness: Vec<f64>,
+    abs_mass: Vec<f64>,
+    b_terms: Vec<f64>,
+    scratch_abs: Vec<f64>,
+    scratch_terms: Vec<f64>,
 }
 
 impl FullStep {
@@ -162,6 +173,11 @@ impl FullStep {
             })
             .collect::<Result<Vec<_>, _>>()?;
         let values = base.clone();
+        let abs_base = base.iter().map(|v| v.abs()).collect();
+        let abs_stiffness = body
+            .linear_stiffness()
+            .map_or_else(Vec::new, |kv| kv.iter().map(|v| v.abs()).collect());
+        let abs_mass = body.mass().iter().map(|v| v.abs()).collect();
         Ok(Self {
             body,
             evaluation,
@@ -182,6 +198,12 @@ impl FullStep {
             rows,
             diag_slots,
             factorizations: 0,
+            abs_base,
+            abs_stiffness,
+            abs_mass,
+            b_terms: vec![0.0; n],
+            scratch_abs: vec![0.0; n],
+            scratch_terms: vec![0.0; n],
         })
     }
 
@@ -190,12 +212,26 @@ impl FullStep {
     pub fn prepare(&mut self, u_prev: &[f64], b: &[f64]) {
         self.u_prev.copy_from_slice(u_prev);
         self.b.copy_from_slice(b);
+        for (t, bi) in self.b_terms.iter_mut().zip(b) {
+            *t = bi.abs();
+        }
         if let Some(k) = self.body.linear_stiffness() {
             self.body
                 .pattern()
                 .symmetric_mul(k, u_prev, &mut self.scratch_f);
             for (bi, ku) in self.b.iter_mut().zip(&self.scratch_f) {
                 *bi -= ku;
+            }
+            for (a, u) in self.scratch_abs.iter_mut().zip(u_prev) {
+                *a = u.abs();
+            }
+            self.body.pattern().symmetric_mul(
+                &self.abs_stiffness,
+                &self.scratch_abs,
+                &mut self.scratch_terms,
+            );
+            for (t, ku) in self.b_terms.iter_mut().zip(&self.scratch_terms) {
+                *t += ku;
             }
         }
     }
@@ -211,16 +247,24 @@ impl StepOperator for FullStep {
         self.u_prev.len()
     }
 
-    fn body_residual(&mut self, d: &[f64], r: &mut [f64]) -> Option<f64> {
+    fn body_residual(&mut self, d: &[f64], r: &mut [f64], terms: &mut [f64]) -> Option<f64> {
         let pattern = self.body.pattern();
+        for (a, di) in self.scratch_abs.iter_mut().zip(d) {
+            *a = di.abs();
+        }
         if self.body.is_linear() {
             pattern.symmetric_mul(&self.base, d, r);
+            pattern.symmetric_mul(&self.abs_base, &self.scratch_abs, terms);
             let s = max_abs(r).max(max_abs(&self.b));
             for (ri, bi) in r.iter_mut().zip(&self.b) {
                 *ri -= bi;
             }
+            for (ti, t) in terms.iter_mut().zip(&self.b_terms) {
+                *ti += t;
+            }
             return Some(s);
         }
+        pattern.symmetric_mul(&self.abs_mass, &self.scratch_abs, terms);
         pattern.symmetric_mul(self.body.mass(), d, r);
         let ok = match self.evaluation {
             Evaluation::End | Evaluation::Midpoint => {
@@ -249,11 +293,19 @@ impl StepOperator for FullStep {
         if !ok {
             return None;
         }
+        let u0 = if self.evaluation == Evaluation::DiscreteGradient {
+            &self.u_prev
+        } else {
+            &self.scratch_u
+        };
+        self.body
+            .internal_force_terms(u0, &self.scratch_u, &mut self.scratch_terms);
         let mut s: f64 = max_abs(&self.b);
         for i in 0..r.len() {
             let m = self.alpha * r[i];
             s = s.max(m.abs()).max(self.scratch_f[i].abs());
             r[i] = m + self.scratch_f[i] - self.b[i];
+            terms[i] = self.alpha * terms[i] + self.scratch_terms[i] + self.b[i].abs();
         }
         Some(s)
     }
@@ -439,6 +491,10 @@ pub struct CondensedStep {
     y: Vec<f64>,
     /// L_ΓΓ y_Γ of the current step.
     c0: Vec<f64>,
+    /// |L_ΓΓ| |L_ΓΓ|ᵀ (the row terms of forming C) and Σ_j |L_ij y_j| (those of c0): the
+    /// round-off scales of the condensed residual's rows.
+    abs_c: Mat<f64>,
+    c0_terms: Vec<f64>,
     jac: Mat<f64>,
     scratch: Vec<f64>,
     b: Vec<f64>,
@@ -484,6 +540,8 @@ impl CondensedStep {
         let gamma: Vec<usize> = order.iter().map(|&(_, g)| g).collect();
         let l_gg = chol.trailing_block(m);
         let c = &l_gg * l_gg.transpose();
+        let abs_l = Mat::<f64>::from_fn(m, m, |i, j| l_gg[(i, j)].abs());
+        let abs_c = &abs_l * abs_l.transpose();
         let ws = chol.workspace(1);
         Ok(Self {
             n,
@@ -495,6 +553,8 @@ impl CondensedStep {
             c,
             y: vec![0.0; n],
             c0: vec![0.0; m],
+            abs_c,
+            c0_terms: vec![0.0; m],
             scratch: vec![0.0; n],
             b: vec![0.0; n],
             body,
@@ -521,10 +581,14 @@ impl CondensedStep {
         let first = self.n - m;
         for i in 0..m {
             let mut s = 0.0;
+            let mut abs = 0.0;
             for j in 0..=i {
-                s += self.l_gg[(i, j)] * self.y[first + j];
+                let t = self.l_gg[(i, j)] * self.y[first + j];
+                s += t;
+                abs += t.abs();
             }
             self.c0[i] = s;
+            self.c0_terms[i] = abs;
         }
     }
 
@@ -553,16 +617,19 @@ impl StepOperator for CondensedStep {
         self.gamma.len()
     }
 
-    fn body_residual(&mut self, d: &[f64], r: &mut [f64]) -> Option<f64> {
+    fn body_residual(&mut self, d: &[f64], r: &mut [f64], terms: &mut [f64]) -> Option<f64> {
         let m = self.gamma.len();
         let mut s: f64 = max_abs(&self.c0);
         for i in 0..m {
             let mut acc = 0.0;
+            let mut abs = 0.0;
             for j in 0..m {
                 acc += self.c[(i, j)] * d[j];
+                abs += self.abs_c[(i, j)] * d[j].abs();
             }
             s = s.max(acc.abs());
             r[i] = acc - self.c0[i];
+            terms[i] = abs + self.c0_terms[i];
         }
         Some(s)
     }

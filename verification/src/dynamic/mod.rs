@@ -54,6 +54,7 @@ impl Family for Dynamic {
             "dynamic_friction",
             "dynamic_plan",
             "dynamic_plan_self",
+            "dynamic_envelope",
         ]
     }
 
@@ -68,6 +69,7 @@ impl Family for Dynamic {
             "dynamic_friction" => cases::friction::check(case),
             "dynamic_plan" => cases::plan::PlanCase::parse(case).map(|_| ()),
             "dynamic_plan_self" => cases::plan_self::PlanSelfCase::parse(case).map(|_| ()),
+            "dynamic_envelope" => cases::envelope::check(case),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -83,6 +85,7 @@ impl Family for Dynamic {
             "dynamic_friction" => cases::friction::run(case, ctx, report),
             "dynamic_plan" => cases::plan::run(case, ctx, report),
             "dynamic_plan_self" => cases::plan_self::run(case, ctx, report),
+            "dynamic_envelope" => cases::envelope::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

@@ -99,6 +99,21 @@ pub fn error_json(e: &LabError) -> serde_json::Value {
             "iterations": iterations, "residual": finite_or_text(*residual),
             "tolerance": finite_or_text(*tolerance), "floor": finite_or_text(*floor),
         }),
+        LabError::Solve(SolveError::DynamicNewtonNotConverged {
+            step,
+            time,
+            iterations,
+            residual,
+            tolerance,
+            floor,
+            row,
+            excess,
+        }) => json!({
+            "message": e.to_string(), "kind": "newton_not_converged", "step": step, "time": time,
+            "iterations": iterations, "residual": finite_or_text(*residual),
+            "tolerance": finite_or_text(*tolerance), "floor": finite_or_text(*floor),
+            "row": row, "excess": finite_or_text(*excess),
+        }),
         LabError::Solve(SolveError::NonFinite {
             step,
             time,

@@ -3,6 +3,7 @@
 
 pub mod bar_wall;
 pub mod bars;
+pub mod envelope;
 pub mod extremes;
 pub mod friction;
 pub mod impact;

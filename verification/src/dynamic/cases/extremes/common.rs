@@ -17,7 +17,7 @@ use contactlab::model::dynamic::record::{conserving, run_recorded_with, Recorded
 use crate::dynamic::scene::scene_from_table;
 
 /// observed ≥ limit.
-pub(super) fn at_least(name: &str, observed: f64, limit: f64) -> Check {
+pub(crate) fn at_least(name: &str, observed: f64, limit: f64) -> Check {
     Check {
         name: name.to_string(),
         observed,
@@ -26,26 +26,26 @@ pub(super) fn at_least(name: &str, observed: f64, limit: f64) -> Check {
     }
 }
 
-pub(super) fn set1(key: &str, value: impl Into<toml::Value>) -> toml::Table {
+pub(crate) fn set1(key: &str, value: impl Into<toml::Value>) -> toml::Table {
     let mut t = toml::Table::new();
     t.insert(key.to_string(), value.into());
     t
 }
 
 /// One run of a study: the scene, its recorded run (or why it could not run), a label.
-pub(super) struct Run {
-    pub(super) label: String,
-    pub(super) scene: DynamicScene,
-    pub(super) run: Result<RecordedRun, String>,
+pub(crate) struct Run {
+    pub(crate) label: String,
+    pub(crate) scene: DynamicScene,
+    pub(crate) run: Result<RecordedRun, String>,
 }
 
 impl Run {
-    pub(super) fn k(&self) -> f64 {
+    pub(crate) fn k(&self) -> f64 {
         self.scene.problem.final_time / self.scene.problem.steps as f64
     }
 
     /// `solution` or the error message.
-    pub(super) fn outcome(&self) -> String {
+    pub(crate) fn outcome(&self) -> String {
         match &self.run {
             Ok(r) => match &r.result {
                 Ok(_) => "solution".into(),
@@ -58,13 +58,13 @@ impl Run {
         }
     }
 
-    pub(super) fn completed(&self) -> bool {
+    pub(crate) fn completed(&self) -> bool {
         matches!(&self.run, Ok(r) if r.result.is_ok())
     }
 
     /// The checks every run meets whatever it is: no panic, the recorded audit finite, and a
     /// failure (if any) a typed error naming its step.
-    fn sanity_checks(&self) -> Vec<Check> {
+    pub(crate) fn sanity_checks(&self) -> Vec<Check> {
         let mut checks = Vec::new();
         match &self.run {
             Err(e) => checks.push(Check::holds(
@@ -97,14 +97,14 @@ impl Run {
 
     /// The audit checks of a completed run (identities at round-off where the combination
     /// conserves, dissipative signs always).
-    pub(super) fn audit_checks(&self) -> Vec<Check> {
+    pub(crate) fn audit_checks(&self) -> Vec<Check> {
         match &self.run {
             Ok(r) => audit_checks(&self.label, &r.summary(), conserving(&self.scene.problem)),
             Err(_) => Vec::new(),
         }
     }
 
-    pub(super) fn records(&self) -> &[contactlab::model::dynamic::audit::AuditRecord] {
+    pub(crate) fn records(&self) -> &[contactlab::model::dynamic::audit::AuditRecord] {
         match &self.run {
             Ok(r) => &r.audit.records,
             Err(_) => &[],
@@ -112,7 +112,7 @@ impl Run {
     }
 
     /// max_n |drift_n| / (E + Φ)_0 of the balance (1.49).
-    pub(super) fn max_relative_drift(&self) -> f64 {
+    pub(crate) fn max_relative_drift(&self) -> f64 {
         let Ok(r) = &self.run else {
             return f64::NAN;
         };
@@ -129,7 +129,7 @@ impl Run {
             / e0
     }
 
-    pub(super) fn newton(&self) -> (usize, usize) {
+    pub(crate) fn newton(&self) -> (usize, usize) {
         let recs = self.records();
         (
             recs.iter().map(|r| r.newton_iterations).sum(),
@@ -137,14 +137,14 @@ impl Run {
         )
     }
 
-    pub(super) fn max_penetration(&self) -> f64 {
+    pub(crate) fn max_penetration(&self) -> f64 {
         self.records()
             .iter()
             .map(|r| r.max_penetration)
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
-    pub(super) fn max_contact_force(&self) -> f64 {
+    pub(crate) fn max_contact_force(&self) -> f64 {
         self.records()
             .iter()
             .map(|r| r.contact_force)
@@ -152,7 +152,7 @@ impl Run {
     }
 
     /// (t_first, t_last, duration = t_last − t_first + k) of the steps with a contact force.
-    pub(super) fn contact_interval(&self) -> Option<(f64, f64, f64)> {
+    pub(crate) fn contact_interval(&self) -> Option<(f64, f64, f64)> {
         let recs = self.records();
         let first = recs.iter().find(|r| r.contact_force > 0.0)?;
         let last = recs.iter().rev().find(|r| r.contact_force > 0.0)?;
@@ -160,7 +160,7 @@ impl Run {
     }
 
     /// Σ_n k F_n: the normal impulse of the foundation.
-    pub(super) fn impulse(&self) -> f64 {
+    pub(crate) fn impulse(&self) -> f64 {
         self.records()
             .iter()
             .skip(1)
@@ -168,7 +168,7 @@ impl Run {
             .sum()
     }
 
-    pub(super) fn backtracks(&self) -> usize {
+    pub(crate) fn backtracks(&self) -> usize {
         match &self.run {
             Ok(r) => r.stats().backtracks,
             Err(_) => 0,
@@ -176,14 +176,14 @@ impl Run {
     }
 
     /// Factorizations of an indefinite step Jacobian (the LBLᵀ or exact-tangent LU fallback).
-    pub(super) fn indefinite_factorizations(&self) -> usize {
+    pub(crate) fn indefinite_factorizations(&self) -> usize {
         match &self.run {
             Ok(r) => r.stats().indefinite_factorizations,
             Err(_) => 0,
         }
     }
 
-    pub(super) fn summary_value(
+    pub(crate) fn summary_value(
         &self,
         f: impl Fn(&contactlab::model::dynamic::audit::AuditSummary) -> f64,
     ) -> f64 {
@@ -195,7 +195,7 @@ impl Run {
 }
 
 /// Builds the scene with `set` and runs it with `extra` observing every step.
-pub(super) fn run_one(
+pub(crate) fn run_one(
     label: &str,
     table: &toml::Table,
     set: &toml::Table,
@@ -216,7 +216,7 @@ pub(super) fn run_one(
     })
 }
 
-pub(super) fn slug(s: &str) -> String {
+pub(crate) fn slug(s: &str) -> String {
     s.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() {
@@ -232,7 +232,7 @@ pub(super) fn slug(s: &str) -> String {
         .join("_")
 }
 
-pub(super) fn push_run_gate(
+pub(crate) fn push_run_gate(
     report: &mut CaseReport,
     study: &str,
     run: &Run,
@@ -257,12 +257,12 @@ pub(super) fn push_run_gate(
     });
 }
 
-pub(super) fn header(cols: &[&str]) -> Vec<String> {
+pub(crate) fn header(cols: &[&str]) -> Vec<String> {
     cols.iter().map(|s| s.to_string()).collect()
 }
 
 /// A dashed power law y = y0 (x/x0)^slope from x0 to x1.
-pub(super) fn slope_line(name: &str, (x0, y0): (f64, f64), x1: f64, slope: f64) -> Series {
+pub(crate) fn slope_line(name: &str, (x0, y0): (f64, f64), x1: f64, slope: f64) -> Series {
     Series::line(
         name.to_string(),
         [(x0, y0), (x1, y0 * (x1 / x0).powf(slope))],

@@ -30,7 +30,7 @@
 //! measurements and its gate, shared by the studies.
 
 mod blow_up;
-mod common;
+pub(crate) mod common;
 mod large_step;
 mod penalty;
 mod speed;
