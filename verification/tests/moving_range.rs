@@ -120,8 +120,16 @@ fn measure_verdict_onsets() {
             };
             let e0 = spec(z);
             let e1 = spec(z * 1.001);
-            let g0 = e0.iter().filter(|l| l.im.abs() <= limit).map(|l| l.re).fold(f64::NEG_INFINITY, f64::max);
-            let g1 = e1.iter().filter(|l| l.im.abs() <= limit).map(|l| l.re).fold(f64::NEG_INFINITY, f64::max);
+            let g0 = e0
+                .iter()
+                .filter(|l| l.im.abs() <= limit)
+                .map(|l| l.re)
+                .fold(f64::NEG_INFINITY, f64::max);
+            let g1 = e1
+                .iter()
+                .filter(|l| l.im.abs() <= limit)
+                .map(|l| l.re)
+                .fold(f64::NEG_INFINITY, f64::max);
             let slope = (g1 - g0) / (0.001 * z);
             let rho_all = e0.iter().map(|l| l.norm()).fold(0.0, f64::max);
             let rho_res = e0
@@ -130,11 +138,19 @@ fn measure_verdict_onsets() {
                 .map(|l| l.norm())
                 .fold(0.0, f64::max);
             let unresolved = assess_resolved(&e0, &VerdictParams::default(), limit).unresolved;
-            println!("   unresolved unstable at the zero onset: {} from {:.3e} to {:.3e}", unresolved.count, unresolved.frequency_from, unresolved.frequency_to);
+            println!(
+                "   unresolved unstable at the zero onset: {} from {:.3e} to {:.3e}",
+                unresolved.count, unresolved.frequency_from, unresolved.frequency_to
+            );
             println!("   limit {limit:.3e} rho_all {rho_all:.3e} rho_res {rho_res:.3e} slope {slope:.3e}");
         }
         let rates = prev
-            .map(|(n0, e0v, e0z)| ((e0v / ev).ln() / (n / n0).ln(), (e0z / ez).ln() / (n / n0).ln()))
+            .map(|(n0, e0v, e0z)| {
+                (
+                    (e0v / ev).ln() / (n / n0).ln(),
+                    (e0z / ez).ln() / (n / n0).ln(),
+                )
+            })
             .unwrap_or((f64::NAN, f64::NAN));
         println!(
             "{name}: verdict {v:.9} err {ev:.3e} rate {:.3} | zero {z:.9} err {ez:.3e} rate {:.3} ({:.1} s)",

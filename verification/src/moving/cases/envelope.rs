@@ -89,14 +89,22 @@ impl EnvelopeCase {
         let o = &self.onset;
         at_least(p, "onset.sine_modes", &o.sine_modes, 2)?;
         positive(p, "onset.rate_tolerance", o.rate_tolerance)?;
-        for (k, list) in [("onset.p1_elements", &o.p1_elements), ("onset.hermite_elements", &o.hermite_elements)] {
+        for (k, list) in [
+            ("onset.p1_elements", &o.p1_elements),
+            ("onset.hermite_elements", &o.hermite_elements),
+        ] {
             if list.len() == 1 {
                 return Err(invalid(p, k, list.len(), "none or at least 2 levels"));
             }
         }
         at_least(p, "plate.elements", &self.plate.elements, 3)?;
         if self.plate.harmonics < 2 {
-            return Err(invalid(p, "plate.harmonics", self.plate.harmonics, "at least 2"));
+            return Err(invalid(
+                p,
+                "plate.harmonics",
+                self.plate.harmonics,
+                "at least 2",
+            ));
         }
         at_least(p, "speeds.modes", &self.speeds.modes, 2)?;
         at_least(p, "speeds.speeds", &self.speeds.speeds, 1)?;
@@ -117,7 +125,11 @@ struct OnsetLevel {
 
 /// The verdict's onset: the smallest p at which `assess_resolved` (default parameters) says
 /// unstable, by bisection to 1e-7 relative (below 1e-3 of the errors measured).
-fn verdict_onset(o: &OnsetEdge, disc: StringDiscretization, p_star: f64) -> Result<(f64, usize), String> {
+fn verdict_onset(
+    o: &OnsetEdge,
+    disc: StringDiscretization,
+    p_star: f64,
+) -> Result<(f64, usize), String> {
     let model = MovingStringModel::new(disc, Default::default()).map_err(|e| e.to_string())?;
     let limit = model_resolution_limit(&model, o.speed);
     let bushing = Bushing {
@@ -131,7 +143,11 @@ fn verdict_onset(o: &OnsetEdge, disc: StringDiscretization, p_star: f64) -> Resu
         Ok(assess_resolved(&ev, &VerdictParams::default(), limit))
     };
     let sign = |p: f64| -> Result<f64, String> {
-        Ok(if assess(p)?.verdict.is_unstable() { 1.0 } else { -1.0 })
+        Ok(if assess(p)?.verdict.is_unstable() {
+            1.0
+        } else {
+            -1.0
+        })
     };
     let onset = flutter_onset(sign, "p", 0.5 * p_star, 1e-7, 1e3)?;
     Ok((onset, assess(1.5 * p_star)?.unresolved.count))
@@ -160,9 +176,27 @@ fn onset_gates(o: &OnsetEdge, report: &mut CaseReport) -> Result<Vec<OnsetLevel>
         .onset;
     let fe = |kind, elements| StringDiscretization::FiniteElements { kind, elements };
     let series: Vec<(&str, Vec<(usize, StringDiscretization)>)> = vec![
-        ("sine", o.sine_modes.iter().map(|&n| (n, StringDiscretization::Sine { modes: n })).collect()),
-        ("p1", o.p1_elements.iter().map(|&m| (m, fe(ElementKind::P1, m))).collect()),
-        ("hermite", o.hermite_elements.iter().map(|&m| (m, fe(ElementKind::Hermite, m))).collect()),
+        (
+            "sine",
+            o.sine_modes
+                .iter()
+                .map(|&n| (n, StringDiscretization::Sine { modes: n }))
+                .collect(),
+        ),
+        (
+            "p1",
+            o.p1_elements
+                .iter()
+                .map(|&m| (m, fe(ElementKind::P1, m)))
+                .collect(),
+        ),
+        (
+            "hermite",
+            o.hermite_elements
+                .iter()
+                .map(|&m| (m, fe(ElementKind::Hermite, m)))
+                .collect(),
+        ),
     ];
     let mut levels = Vec::new();
     let mut checks = Vec::new();
@@ -184,8 +218,16 @@ fn onset_gates(o: &OnsetEdge, report: &mut CaseReport) -> Result<Vec<OnsetLevel>
         }
         let sizes: Vec<usize> = plan.iter().map(|l| l.0).collect();
         let pairs = sizes.len() - 1;
-        for (k, ((w, e), r)) in sizes.windows(2).zip(errs.windows(2)).zip(rates(&sizes, &errs)).enumerate() {
-            let what = format!("{name} {} → {}: pairwise rate of |onset − p*| ({:.3e} → {:.3e})", w[0], w[1], e[0], e[1]);
+        for (k, ((w, e), r)) in sizes
+            .windows(2)
+            .zip(errs.windows(2))
+            .zip(rates(&sizes, &errs))
+            .enumerate()
+        {
+            let what = format!(
+                "{name} {} → {}: pairwise rate of |onset − p*| ({:.3e} → {:.3e})",
+                w[0], w[1], e[0], e[1]
+            );
             checks.push(if k + 1 == pairs {
                 Check::within(&what, r, 1.0, o.rate_tolerance)
             } else {
@@ -220,12 +262,19 @@ fn plate_gates(edge: &PlateEdge, report: &mut CaseReport) -> Result<Vec<PlateLev
         outer_edge: OuterEdge::Free,
         ..Default::default()
     };
-    let exact = AnnularPlate::annulus(plate.inner_radius, plate.outer_radius, plate.poisson, ExactEdge::Free);
+    let exact = AnnularPlate::annulus(
+        plate.inner_radius,
+        plate.outer_radius,
+        plate.poisson,
+        ExactEdge::Free,
+    );
     let refs = (0..=edge.harmonics)
         .map(|n| exact.natural_frequencies(n, 2, plate.bending_stiffness, plate.mass_per_area))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| e.to_string())?;
-    let crit_exact = (1..refs.len()).map(|n| refs[n][0] / n as f64).fold(f64::INFINITY, f64::min);
+    let crit_exact = (1..refs.len())
+        .map(|n| refs[n][0] / n as f64)
+        .fold(f64::INFINITY, f64::min);
     let mut levels = Vec::new();
     for &m in &edge.elements {
         let (mut err, mut crit) = (0.0f64, f64::INFINITY);
@@ -252,12 +301,18 @@ fn plate_gates(edge: &PlateEdge, report: &mut CaseReport) -> Result<Vec<PlateLev
     for l in &levels[2..] {
         let scale = b.elements as f64 / l.elements as f64;
         checks.push(Check::at_most(
-            &format!("M = {}: max relative error of ω_{{n,m}} (n ≤ {}, m ≤ 1) / that at M = {}", l.elements, edge.harmonics, b.elements),
+            &format!(
+                "M = {}: max relative error of ω_{{n,m}} (n ≤ {}, m ≤ 1) / that at M = {}",
+                l.elements, edge.harmonics, b.elements
+            ),
             l.frequency_error / b.frequency_error,
             1.0,
         ));
         checks.push(Check::at_most(
-            &format!("M = {}: that error / the model e({})·({}/M)^{r_f:.3}", l.elements, b.elements, b.elements),
+            &format!(
+                "M = {}: that error / the model e({})·({}/M)^{r_f:.3}",
+                l.elements, b.elements, b.elements
+            ),
             l.frequency_error / (b.frequency_error * scale.powf(r_f)),
             1.0,
         ));
@@ -293,15 +348,20 @@ fn speed_gates(s: &SpeedEdge, report: &mut CaseReport) -> Result<Vec<SpeedPoint>
         let exact = std::f64::consts::PI * (1.0 - v * v).abs();
         let mut errors = Vec::new();
         for &n in &s.modes {
-            let model = MovingStringModel::new(StringDiscretization::Sine { modes: n }, Default::default())
-                .map_err(|e| e.to_string())?;
+            let model =
+                MovingStringModel::new(StringDiscretization::Sine { modes: n }, Default::default())
+                    .map_err(|e| e.to_string())?;
             let d = MovingStringData {
                 speed: v,
                 damping: 0.0,
                 oscillator: None,
             };
             let ev = model_eigenvalues(&model, &d)?;
-            let a = assess_resolved(&ev, &VerdictParams::default(), model_resolution_limit(&model, v));
+            let a = assess_resolved(
+                &ev,
+                &VerdictParams::default(),
+                model_resolution_limit(&model, v),
+            );
             let lowest = ev
                 .iter()
                 .filter(|l| l.im > 0.0)
@@ -310,7 +370,10 @@ fn speed_gates(s: &SpeedEdge, report: &mut CaseReport) -> Result<Vec<SpeedPoint>
             let error = (lowest - exact).abs() / exact;
             let expected = Verdict::Marginal;
             checks.push(Check::holds(
-                &format!("v̄ = {v}, N = {n}: verdict {} (λ₁ error {error:.2e})", a.verdict.name()),
+                &format!(
+                    "v̄ = {v}, N = {n}: verdict {} (λ₁ error {error:.2e})",
+                    a.verdict.name()
+                ),
                 a.verdict == expected,
                 expected.name(),
             ));
@@ -328,7 +391,11 @@ fn speed_gates(s: &SpeedEdge, report: &mut CaseReport) -> Result<Vec<SpeedPoint>
                 &format!(
                     "v̄ = {v}: λ₁'s error over N = {:?}: {}",
                     s.modes,
-                    errors.iter().map(|e| format!("{e:.2e}")).collect::<Vec<_>>().join(", ")
+                    errors
+                        .iter()
+                        .map(|e| format!("{e:.2e}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ),
                 errors.windows(2).all(|e| e[1] <= e[0].max(floor)),
                 "not growing with N (above the round-off floor 64 ε)",
@@ -348,26 +415,37 @@ fn speed_gates(s: &SpeedEdge, report: &mut CaseReport) -> Result<Vec<SpeedPoint>
 fn limit_gates(report: &mut CaseReport) -> Result<(), String> {
     let mut checks = Vec::new();
     let plate = PlateProperties::default();
-    let e = harmonic_frequencies(&plate, 4001, 2, 1).err().map(|e| e.to_string()).unwrap_or_default();
+    let e = harmonic_frequencies(&plate, 4001, 2, 1)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
     checks.push(Check::holds(
         &format!("4001 radial elements: {e}"),
         e.contains("discretization.elements"),
         "a typed error naming discretization.elements",
     ));
-    let model = MovingStringModel::new(StringDiscretization::Sine { modes: 10 }, Default::default())
-        .map_err(|e| e.to_string())?;
+    let model =
+        MovingStringModel::new(StringDiscretization::Sine { modes: 10 }, Default::default())
+            .map_err(|e| e.to_string())?;
     let bushing = Bushing {
         stiffness: 4.2,
         mass: 0.35,
         position: 1.0,
     };
-    let e = model.system(&bushing.data(0.37, 0.03, ContactModel::Ideal, 0.0)).err().map(|e| e.to_string()).unwrap_or_default();
+    let e = model
+        .system(&bushing.data(0.37, 0.03, ContactModel::Ideal, 0.0))
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
     checks.push(Check::holds(
         &format!("a bushing on the guide ā = 1: {e}"),
         e.contains("oscillator.position"),
         "a typed error naming oscillator.position",
     ));
-    let soft = Bushing { position: 0.41, ..bushing };
+    let soft = Bushing {
+        position: 0.41,
+        ..bushing
+    };
     let e = model
         .system(&soft.data(0.37, 0.03, ContactModel::Penalty { stiffness: -1.0 }, 0.0))
         .err()
