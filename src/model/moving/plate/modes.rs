@@ -282,7 +282,26 @@ pub fn harmonic_frequencies(
         plate.outer_edge,
     )?;
     let r = radial.matrices(plate.poisson)?;
-    let (lambda, _) = harmonic_modes(&radial, &r, plate, n, count, &format!("harmonic n = {n}"))?;
+    let at = format!("harmonic n = {n}");
+    let (mut lambda, _) = harmonic_modes(&radial, &r, plate, n, count, &at)?;
+    // Asked for the upper half of the spectrum too: there the direct reduction through the
+    // mass factor (absolute round-off ε λ_max) beats the inverse one (relative ε λ/λ_min);
+    // each eigenvalue is taken from the reduction whose error is smaller, the crossover at
+    // λ = √(λ_min λ_max).
+    if 2 * count > radial.len() && !lambda.is_empty() {
+        let k = harmonic_stiffness(&r, plate, n);
+        let m = Mat::from_fn(r.mass.nrows(), r.mass.ncols(), |i, j| {
+            plate.mass_per_area * r.mass[(i, j)]
+        });
+        let (direct, _) = generalized_modes_by_mass(k.as_ref(), m.as_ref(), count, &at)?;
+        let top = direct.last().copied().unwrap_or(0.0);
+        let crossover = (lambda[0] * top).max(0.0).sqrt();
+        for (l, d) in lambda.iter_mut().zip(&direct) {
+            if *d > crossover {
+                *l = *d;
+            }
+        }
+    }
     lambda
         .into_iter()
         .enumerate()
