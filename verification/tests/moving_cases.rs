@@ -44,21 +44,28 @@ fn the_long_moving_studies_are_full_tier_the_mid_ones_default_and_the_rest_quick
         // bisections) and the plate pad's long time checks (20 s); default: the 4–8 s studies
         // (the thick string's references, the patch, the CI versions of the map and of the pad)
         let id = c.header.id.as_str();
-        let expected =
-            if ["moving_map", "moving_flutter_elements", "moving_plate_pad"].contains(&id) {
-                Tier::Full
-            } else if [
-                "moving_flutter",
-                "moving_flutter_patch",
-                "moving_map_quick",
-                "moving_plate_pad_quick",
-            ]
-            .contains(&id)
-            {
-                Tier::Default
-            } else {
-                Tier::Quick
-            };
+        let expected = if [
+            "moving_map",
+            "moving_flutter_elements",
+            "moving_plate_pad",
+            "moving_envelope_full",
+        ]
+        .contains(&id)
+        {
+            Tier::Full
+        } else if [
+            "moving_flutter",
+            "moving_flutter_patch",
+            "moving_map_quick",
+            "moving_plate_pad_quick",
+            "moving_envelope",
+        ]
+        .contains(&id)
+        {
+            Tier::Default
+        } else {
+            Tier::Quick
+        };
         assert_eq!(c.header.tier, expected, "{id}");
     }
 }

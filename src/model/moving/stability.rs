@@ -5,15 +5,31 @@
 //! flutter when it belongs to a complex pair (Hetzler 2009, §4.2; Huseyin 1978). Eigenvalues on
 //! the imaginary axis (undamped gyroscopic or conservative systems) leave it marginal.
 //!
-//! Round-off decides nothing here: an eigenvalue counts as off the axis only when
-//! |Re λ| > τ = max(τ_rel · ρ, τ_abs), ρ = max |λ| (the spectral scale). The default
-//! τ_rel = 1e-7 ≈ 7 sqrt(ε) covers the worst case of the QR algorithm on the scaled companion
-//! matrix: a simple eigenvalue moves by O(κ ε ρ), but a defective double eigenvalue (a Jordan
-//! block, as at the onset of flutter of a circulatory system, where two imaginary eigenvalues
-//! collide) splits by up to O(sqrt(ε) ρ) ≈ 1.5e-8 ρ. The verification case `moving_extremes`
-//! approaches such Jordan blocks to 1e-14 and measures at most 4e-10 ρ below the onset (exact
-//! real part 0). The price is a blind zone: a true growth or decay rate below τ is reported
-//! `Marginal`, never as a wrong kind of (in)stability.
+//! Round-off decides nothing here: an eigenvalue λ counts as off the axis only when
+//! |Re λ| > τ(λ), its own marginal band
+//!
+//! ```text
+//!   τ(λ) = max(τ_rel |λ|, C n ε ρ, τ_abs),   ρ = max |λ| over the computed spectrum (order n).
+//! ```
+//!
+//! The default τ_rel = 1e-7 ≈ 7 sqrt(ε) covers a defective double eigenvalue (a Jordan block, as
+//! at the onset of flutter of an undamped circulatory system, where two imaginary eigenvalues
+//! collide), which splits by up to O(sqrt(ε)) of its own scale under a relative perturbation of
+//! order ε; the verification case `moving_extremes` approaches such Jordan blocks to 1e-14 and
+//! measures at most 4e-10 ρ below the onset (exact real part 0). C n ε ρ (C =
+//! [`BACKWARD_ERROR_CONSTANT`]) is the normwise backward error of the QR algorithm on the order-n
+//! companion matrix: the floor of a simple eigenvalue's absolute error, which decides near
+//! λ = 0 (a divergence crossing). The price is a blind zone: a true growth or decay rate below
+//! τ(λ) is reported `Marginal`, never as a wrong kind of (in)stability.
+//!
+//! Why the band is each eigenvalue's own and not τ_rel ρ (issue 31): a discretized continuum's
+//! ρ grows with the basis (ρ ≈ 4.3 N for N sines on the thick string of issue 16, from the
+//! unresolved top of the spectrum; the resolved part alone still ≈ 2 N), while the decisive
+//! eigenvalue — a low string mode at |λ| ≈ 2 — does not. A band τ_rel ρ shifts the verdict's
+//! flutter onset by τ_rel ρ / (d Re λ/dp) ∝ N, which overtakes the O(1/N) discretization error:
+//! 1.7e-3 at N = 160 with every eigenvalue's ρ (the onset's pairwise rates 0.87, 0.40, −0.32,
+//! −0.76 over N = 20 … 320), and still 7.6e-4 with the resolved eigenvalues' ρ (against an error
+//! of 4.4e-4). With τ(λ) the shift is τ_rel |λ*| / (d Re λ/dp) ≈ 5e-6 for every N.
 //!
 //! Discretized continua: only the eigenvalues below the basis's resolution limit ω_res
 //! (`resolution.rs`) stand for the continuum. [`assess_resolved`] reads the verdict from them
@@ -29,13 +45,13 @@ use crate::error::InputError;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
-    /// Every Re λ < −τ: asymptotically stable.
+    /// Every Re λ < −τ(λ): asymptotically stable.
     Stable,
-    /// max Re λ within ±τ of zero: on the imaginary axis to round-off (neutral).
+    /// No Re λ > τ(λ) and some Re λ within ±τ(λ): on the imaginary axis to round-off (neutral).
     Marginal,
-    /// A real eigenvalue > τ.
+    /// A real eigenvalue > τ(λ) (the largest unstable one).
     Divergence,
-    /// A complex pair with Re λ > τ.
+    /// A complex pair with Re λ > τ(λ) (the largest unstable one).
     Flutter,
 }
 
@@ -67,7 +83,7 @@ impl Verdict {
 /// The round-off tolerance of the verdicts (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VerdictParams {
-    /// τ_rel: relative to the spectral scale ρ = max |λ|.
+    /// τ_rel: relative to each eigenvalue's modulus |λ|.
     pub relative_tolerance: f64,
     /// τ_abs: the floor when ρ is tiny.
     pub absolute_tolerance: f64,
@@ -111,7 +127,8 @@ pub struct StabilityAssessment {
     /// The eigenvalue with the largest real part (Im ≥ 0 of a conjugate pair).
     pub critical_re: f64,
     pub critical_im: f64,
-    /// τ used.
+    /// The band τ(λ) of the eigenvalue that decided the verdict (the unstable one with the
+    /// largest real part, else the one with the largest real part).
     pub tolerance: f64,
     /// The number of eigenvalues with Re λ > τ.
     pub unstable_eigenvalues: usize,
@@ -156,11 +173,27 @@ pub fn assess(eigenvalues: &[c64], params: &VerdictParams) -> StabilityAssessmen
     assess_resolved(eigenvalues, params, f64::INFINITY)
 }
 
+/// The constant C of the round-off floor C n ε ρ of a simple eigenvalue (module docs): the
+/// normwise backward error of the QR algorithm on the order-n companion matrix, O(n ε ‖A‖).
+pub const BACKWARD_ERROR_CONSTANT: f64 = 8.0;
+
+/// The marginal band of one eigenvalue λ: τ(λ) = max(τ_rel |λ|, C n ε ρ, τ_abs) (module docs),
+/// with ρ = max |λ| over the whole computed spectrum of order n.
+pub fn marginal_band(lambda: c64, params: &VerdictParams, order: usize, rho: f64) -> f64 {
+    let floor = BACKWARD_ERROR_CONSTANT * order as f64 * f64::EPSILON * rho;
+    (params.relative_tolerance * lambda.norm())
+        .max(floor)
+        .max(params.absolute_tolerance)
+}
+
 /// Classifies the eigenvalues with |Im λ| ≤ `resolution_limit` (see the module docs) and
 /// reports the unstable ones above it as [`UnresolvedInstability`]; with
-/// `params.resolved_only = false` the limit is ignored (every eigenvalue counts). The tolerance τ
-/// is taken from the whole spectrum (the round-off of the eigensolver scales with all of it). No
-/// resolved eigenvalue: `Marginal`.
+/// `params.resolved_only = false` the limit is ignored (every eigenvalue counts). Each
+/// eigenvalue is judged against its own band τ(λ) ([`marginal_band`]): unstable when
+/// Re λ > τ(λ), real when |Im λ| ≤ τ(λ); the verdict is that of the unstable resolved
+/// eigenvalue with the largest real part (divergence if it is real, flutter otherwise), else
+/// `Stable` when every resolved Re λ < −τ(λ), else `Marginal`. No resolved eigenvalue:
+/// `Marginal`.
 pub fn assess_resolved(
     eigenvalues: &[c64],
     params: &VerdictParams,
@@ -172,8 +205,10 @@ pub fn assess_resolved(
         f64::INFINITY
     };
     let rho = eigenvalues.iter().map(|l| l.norm()).fold(0.0, f64::max);
-    let tol = (params.relative_tolerance * rho).max(params.absolute_tolerance);
+    let band = |l: c64| marginal_band(l, params, eigenvalues.len(), rho);
     let mut crit: Option<c64> = None;
+    let mut worst_unstable: Option<c64> = None;
+    let mut all_stable = true;
     let (mut unstable, mut real_unstable) = (0, 0);
     let mut unresolved = UnresolvedInstability {
         count: 0,
@@ -182,8 +217,8 @@ pub fn assess_resolved(
         max_real_part: f64::NEG_INFINITY,
     };
     for &l in eigenvalues {
-        let resolved = l.im.abs() <= resolution_limit;
-        if !resolved {
+        let tol = band(l);
+        if l.im.abs() > resolution_limit {
             if l.re > tol {
                 unresolved.count += 1;
                 unresolved.frequency_from = unresolved.frequency_from.min(l.im.abs());
@@ -195,10 +230,16 @@ pub fn assess_resolved(
         if crit.is_none_or(|c| l.re > c.re || (l.re == c.re && l.im.abs() < c.im.abs())) {
             crit = Some(l);
         }
+        all_stable &= l.re < -tol;
         if l.re > tol {
             unstable += 1;
             if l.im.abs() <= tol {
                 real_unstable += 1;
+            }
+            if worst_unstable
+                .is_none_or(|c| l.re > c.re || (l.re == c.re && l.im.abs() < c.im.abs()))
+            {
+                worst_unstable = Some(l);
             }
         }
     }
@@ -206,24 +247,20 @@ pub fn assess_resolved(
         unresolved.frequency_from = 0.0;
         unresolved.max_real_part = 0.0;
     }
-    let crit = crit.unwrap_or(c64::new(0.0, 0.0));
-    let verdict = if crit.re > tol {
-        if crit.im.abs() <= tol {
-            Verdict::Divergence
-        } else {
-            Verdict::Flutter
-        }
-    } else if crit.re < -tol {
-        Verdict::Stable
-    } else {
-        Verdict::Marginal
+    let (verdict, decisive) = match (worst_unstable, crit) {
+        (Some(w), _) if w.im.abs() <= band(w) => (Verdict::Divergence, w),
+        (Some(w), _) => (Verdict::Flutter, w),
+        (None, Some(c)) if all_stable => (Verdict::Stable, c),
+        (None, Some(c)) => (Verdict::Marginal, c),
+        (None, None) => (Verdict::Marginal, c64::new(0.0, 0.0)),
     };
+    let crit = crit.unwrap_or(c64::new(0.0, 0.0));
     StabilityAssessment {
         verdict,
         max_real_part: crit.re,
         critical_re: crit.re,
         critical_im: crit.im.abs(),
-        tolerance: tol,
+        tolerance: band(decisive),
         unstable_eigenvalues: unstable,
         real_unstable_eigenvalues: real_unstable,
         spectral_scale: rho,
@@ -280,8 +317,8 @@ mod tests {
             (70.0, 90.0)
         );
         assert_eq!(a.unresolved.max_real_part, 0.5);
-        // τ from the whole spectrum
-        assert_eq!(a.tolerance, 1e-7 * c(0.5, 90.0).norm());
+        // τ of the deciding eigenvalue, its own modulus
+        assert_eq!(a.tolerance, 1e-7 * c(-0.1, 3.0).norm());
         // an unstable resolved eigenvalue decides; the warning stays
         let b = assess_resolved(&[c(0.01, 40.0), c(0.01, -40.0), c(0.5, 90.0)], &p, 50.0);
         assert_eq!(b.verdict, Verdict::Flutter);
@@ -304,6 +341,33 @@ mod tests {
             Verdict::Flutter
         );
         assert!(!assess(&spectrum, &p).unresolved.is_present());
+    }
+
+    #[test]
+    fn a_low_modes_growth_is_judged_on_its_own_scale_whatever_the_top_of_the_spectrum() {
+        // a growth rate of 1e-6 on |λ| = 2 (band 2e-7) is flutter whether or not the basis
+        // carries eigenvalues up to 1e4 (old band τ_rel ρ = 1e-3: marginal)
+        let p = VerdictParams::default();
+        let low = [c(1e-6, 2.0), c(1e-6, -2.0), c(-0.01, 5.0), c(-0.01, -5.0)];
+        assert_eq!(assess(&low, &p).verdict, Verdict::Flutter);
+        let mut wide = low.to_vec();
+        wide.extend([c(-0.01, 1e4), c(-0.01, -1e4)]);
+        let a = assess(&wide, &p);
+        assert_eq!(a.verdict, Verdict::Flutter);
+        assert_eq!(a.tolerance, 1e-7 * c(1e-6, 2.0).norm());
+        // an eigenvalue within its band is marginal even below a larger stable one's band
+        let m = assess(&[c(1e-8, 2.0), c(-5e-6, 100.0)], &p);
+        assert_eq!(m.verdict, Verdict::Marginal);
+        // the unstable eigenvalue with the largest real part decides the kind
+        let d = assess(&[c(1e-3, 0.0), c(5e-4, 7.0), c(-1.0, 1e4)], &p);
+        assert_eq!(d.verdict, Verdict::Divergence);
+        // near λ = 0 the band is the eigensolver's floor C n ε ρ
+        let z = assess(&[c(1e-13, 0.0), c(-0.1, 1e3)], &p);
+        assert_eq!(z.verdict, Verdict::Marginal);
+        assert_eq!(
+            z.tolerance,
+            BACKWARD_ERROR_CONSTANT * 2.0 * f64::EPSILON * c(-0.1, 1e3).norm()
+        );
     }
 
     #[test]

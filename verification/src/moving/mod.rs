@@ -14,6 +14,7 @@
 //! | `moving_extremes` | [`cases::extremes`] | v̄ → 1, k̄_p → 10¹⁵, undamped gyroscopic–circulatory systems, near-defective eigenvalues |
 //! | `moving_map` | [`cases::map`] | the 200 × 200 map, deterministic, every point checked against faer, boundaries converged in N |
 //! | `moving_plate` | [`cases::plate::case`] | the rotating plate: frequencies against the Bessel characteristic equation with rates in h, the spatial-frame spectrum i(±ω − nΩ) to round-off, the Campbell diagram's tracked branches, G skew / K_T symmetric exactly where R_P / R_Q vanish |
+//! | `moving_envelope` | [`cases::envelope`] | the family at the edges of its range: the verdict's flutter onset against the continuum's to N = 320 sines and M = 200 elements, the plate's frequencies to M = 512, speeds near 0 and past v̄ = 1, typed errors past the limits |
 //! | `moving_plate_pad` | [`cases::plate::pad`] | the rotating plate with a stationary pad: stable below the critical speed (theorem) and destabilized above, friction flutter maps confirmed in time, the onset converged in the basis, k_p → ∞, N = 20 harmonics |
 
 pub mod bounds;
@@ -36,6 +37,7 @@ use crate::core::format::CaseError;
 use crate::core::report::case_report::CaseReport;
 use crate::family::Family;
 use cases::disc::DiscCase;
+use cases::envelope::EnvelopeCase;
 use cases::extremes::ExtremesCase;
 use cases::flutter::FlutterCase;
 use cases::map::MapCase;
@@ -78,6 +80,7 @@ impl Family for Moving {
             "moving_map",
             "moving_plate",
             "moving_plate_pad",
+            "moving_envelope",
         ]
     }
 
@@ -94,6 +97,7 @@ impl Family for Moving {
             "moving_map" => checked(case, MapCase::check).map(|_| ()),
             "moving_plate" => checked(case, PlateCase::check).map(|_| ()),
             "moving_plate_pad" => checked(case, PadCase::check).map(|_| ()),
+            "moving_envelope" => checked(case, EnvelopeCase::check).map(|_| ()),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -135,6 +139,9 @@ impl Family for Moving {
             }
             "moving_plate_pad" => {
                 cases::plate::pad::run(&checked(case, PadCase::check).map_err(e)?, ctx, report)
+            }
+            "moving_envelope" => {
+                cases::envelope::run(&checked(case, EnvelopeCase::check).map_err(e)?, ctx, report)
             }
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }

@@ -46,7 +46,7 @@ pub fn unresolved_warning(a: &StabilityAssessment) -> String {
         return String::new();
     }
     format!(
-        "; warning: {} unstable eigenvalue(s) above the resolution limit ω_res = {:.4e} (|Im λ| from {:.4e} to {:.4e}, max Re λ = {:.3e}) — the basis's, not the string's: not part of the verdict; refine the basis to resolve them",
+        "; warning: {} unstable eigenvalue(s) above the resolution limit ω_res = {:.4e} (|Im λ| from {:.4e} to {:.4e}, max Re λ = {:.3e}) — the basis's, not the continuum's: excluded from the verdict. Refining does not remove them: their number grows with the basis and they stay above ω_res, which grows with it",
         a.unresolved.count,
         a.resolution_limit,
         a.unresolved.frequency_from,

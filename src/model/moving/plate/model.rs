@@ -39,7 +39,7 @@ use crate::model::moving::linearized::LinearizedModel;
 use crate::model::moving::plate::angular::{AngularBasis, AngularMatrices};
 use crate::model::moving::plate::data::{PlateData, PlateParameter, PlateProperties};
 use crate::model::moving::plate::membrane::SpinningDiscStress;
-use crate::model::moving::plate::modes::{generalized_modes, harmonic_stiffness};
+use crate::model::moving::plate::modes::harmonic_modes;
 use crate::model::moving::plate::radial::{RadialBasis, RadialMatrices};
 use crate::model::moving::system::{split_symmetric_skew, MovingSystem};
 
@@ -168,6 +168,7 @@ impl RotatingPlateModel {
         let (modes, frequencies) = Self::modal_basis(
             &plate,
             &discretization.angular,
+            &radial,
             &r,
             &ang,
             discretization.radial_modes,
@@ -228,6 +229,7 @@ impl RotatingPlateModel {
     fn modal_basis(
         plate: &PlateProperties,
         angular: &AngularBasis,
+        radial: &RadialBasis,
         r: &RadialMatrices,
         ang: &AngularMatrices,
         radial_modes: Option<usize>,
@@ -239,19 +241,17 @@ impl RotatingPlateModel {
         let mut per_harmonic: Vec<Option<(Vec<f64>, Mat<f64>)>> = Vec::new();
         let mut modes = Vec::with_capacity(nang);
         let mut freqs = Vec::with_capacity(nang);
-        let mass_n = Mat::from_fn(r.mass.nrows(), r.mass.ncols(), |i, j| {
-            plate.mass_per_area * r.mass[(i, j)]
-        });
         for k in 0..nang {
             let (n, _) = angular.harmonic(k).unwrap_or((0, false));
             if per_harmonic.len() <= n {
                 per_harmonic.resize(n + 1, None);
             }
             if per_harmonic[n].is_none() {
-                let kn = harmonic_stiffness(r, plate, n);
-                let (lambda, phi) = generalized_modes(
-                    kn.as_ref(),
-                    mass_n.as_ref(),
+                let (lambda, phi) = harmonic_modes(
+                    radial,
+                    r,
+                    plate,
+                    n,
                     m,
                     &format!("the radial modes of harmonic n = {n}"),
                 )?;

@@ -220,6 +220,61 @@ impl RadialBasis {
         Ok(out)
     }
 
+    /// The rows of a strain factor B of the bending stiffness of harmonic n,
+    /// K_n = D [a − n² (c + cᵀ) + n⁴ d + n² e] = Bᵀ B, passed to `row` one at a time as the
+    /// element's four global dofs (`None`: constrained, its coefficient not part of B) and the
+    /// four coefficients. For W(r) cos nφ the curvatures are
+    /// κ_rr = W'', κ_θθ = W'/r − n² W/r², κ_rθ = n (W'/r − W/r²) (up to the angular factor), and
+    /// the energy density (per unit ∫ψ²) is
+    ///
+    /// ```text
+    ///   D [κ_rr² + κ_θθ² + 2ν κ_rr κ_θθ + 2(1 − ν) κ_rθ²] r
+    ///     = D [(κ_rr + ν κ_θθ)² + (1 − ν²) κ_θθ² + 2(1 − ν) κ_rθ²] r,
+    /// ```
+    ///
+    /// a sum of three squares for −1 < ν < 1; at each Gauss point with weight w_g the three rows
+    /// are √(D w_g r) times (κ_rr + ν κ_θθ, √(1 − ν²) κ_θθ, √(2(1 − ν)) κ_rθ) of the shape
+    /// functions. Expanding the squares gives back the integrands of a, c, d, e (module docs), so
+    /// BᵀB = K_n up to round-off (unit test). The factor is what keeps the low frequencies
+    /// accurate on fine meshes (`modes.rs`): it is never squared.
+    pub fn strain_rows(
+        &self,
+        poisson: f64,
+        n: usize,
+        bending_stiffness: f64,
+        mut row: impl FnMut(&[Option<usize>; 4], &[f64; 4]),
+    ) -> Result<(), InputError> {
+        let rule = GaussLegendre::new(8)?;
+        let nu = poisson;
+        let n2 = (n * n) as f64;
+        let nf = n as f64;
+        let (s_tt, s_rt) = ((1.0 - nu * nu).sqrt(), (2.0 * (1.0 - nu)).sqrt());
+        for e in 0..self.nodes.len() - 1 {
+            let (r0, r1) = (self.nodes[e], self.nodes[e + 1]);
+            let h = r1 - r0;
+            let dofs = self.local_dofs(e);
+            for (&x, &w) in rule.points().iter().zip(rule.weights()) {
+                let t = 0.5 * (1.0 + x);
+                let r = r0 + h * t;
+                let scale = (bending_stiffness * 0.5 * h * w * r).sqrt();
+                let s = hermite_shapes(h, t);
+                let (mut b1, mut b2, mut b3) = ([0.0; 4], [0.0; 4], [0.0; 4]);
+                for l in 0..4 {
+                    let (v, d1, d2) = (s[0][l], s[1][l], s[2][l]);
+                    let k_tt = d1 / r - n2 * v / (r * r);
+                    let k_rt = nf * (d1 / r - v / (r * r));
+                    b1[l] = scale * (d2 + nu * k_tt);
+                    b2[l] = scale * s_tt * k_tt;
+                    b3[l] = scale * s_rt * k_rt;
+                }
+                row(&dofs, &b1);
+                row(&dofs, &b2);
+                row(&dofs, &b3);
+            }
+        }
+        Ok(())
+    }
+
     /// ∫ N_r R_j' S_i' r dr and ∫ N_θ R_j S_i / r dr for in-plane stress resultants given as
     /// functions of r (the membrane stiffening, `membrane.rs`).
     pub fn membrane_matrices(

@@ -3,6 +3,7 @@
 //! `<out>/<case id>/data.json`).
 
 pub mod disc;
+pub mod envelope;
 pub mod extremes;
 pub mod flutter;
 pub mod map;

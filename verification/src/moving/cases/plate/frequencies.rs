@@ -63,10 +63,10 @@ pub struct FrequencyLevel {
     /// (n, m, ω_h, ω_exact, relative error).
     pub modes: Vec<(usize, usize, f64, f64, f64)>,
     pub error: f64,
-    /// The bound of the round-off of the relative frequency error: the Cholesky-reduced
-    /// symmetric eigenproblem L⁻¹KL⁻ᵀ is solved to ε λ_max absolutely, i.e. ω to ε λ_max/(2λ)
-    /// relatively (λ = ω²; the largest over the checked modes). Reported: a bound, not the
-    /// floor (measured ~100× below it).
+    /// The bound of the round-off of the relative frequency error: the program solves the
+    /// inverse problem through the strain factor of K_n (`model::moving::plate::modes`), which
+    /// perturbs λ = ω² by about ε √(λ_max λ), i.e. ω by ε √(λ_max/λ)/2 relatively (the largest
+    /// over the checked modes). Reported: a bound, not the floor.
     pub floor: f64,
 }
 
@@ -103,7 +103,7 @@ fn levels(
             let fe = harmonic_frequencies(plate, ne, *n, 2 * ne + 2).map_err(|e| e.to_string())?;
             let top = fe.last().copied().unwrap_or(0.0);
             for (m, we) in w.iter().enumerate() {
-                floor = floor.max(f64::EPSILON * top * top / (2.0 * we * we));
+                floor = floor.max(f64::EPSILON * top / (2.0 * we));
                 let wh = fe[m + skip];
                 modes.push((*n, m, wh, *we, (wh - we).abs() / we));
             }
