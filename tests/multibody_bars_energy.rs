@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use contactlab::error::{Error, SolveError};
 use contactlab::field::Field;
 use contactlab::material::hyperelastic::{Hyperelastic2d, LinearElastic};
 use contactlab::mesh::triangle::{Diagonal, RectangleSide, TriangleMesh};
@@ -201,7 +202,7 @@ fn head_on(m: usize, rows: usize, scheme: MultibodyScheme) -> (f64, f64, f64) {
         .map(|r| (r.energy - e0) / e0)
         .fold(f64::NEG_INFINITY, f64::max);
     let rebound = centre_velocity(&solver, &sol.final_velocity, 0) / 0.1;
-    let flagged = sol.records.iter().map(|r| r.switch_work.max(0.0)).sum::<f64>() / e0;
+    let flagged = sol.records.iter().map(|r| r.positive_set_work).sum::<f64>() / e0;
     (rise, rebound, flagged)
 }
 
@@ -246,4 +247,95 @@ fn head_on_bars_at_a_tenth_of_c_never_gain_energy_and_rebound_at_minus_v() {
             / xs.iter().map(|x| (x - mx) * (x - mx)).sum::<f64>();
         assert!(rate >= 0.5, "square {square}: rate {rate} ({errors:?})");
     }
+}
+
+/// A block moving sideways at (1, 0) below the top line of a master block it approaches from
+/// beside the master's free end (only the master's top is a master surface): its top corner
+/// enters the band past the free end where it is held on the end segment's line extended, from
+/// 0.05 below it — a node re-activated from inside. `allow`: the pair accepts the energy gain.
+fn side_entry(allow: bool) -> MultibodySolver {
+    let law: Arc<dyn Hyperelastic2d> =
+        Arc::new(LinearElastic::from_young_poisson(100.0, 0.0).unwrap());
+    let block = |origin: [f64; 2], size: [f64; 2], div: [usize; 2]| {
+        Arc::new(
+            PlaneBody::new(PlaneBodyData {
+                mesh: TriangleMesh::rectangle(origin, size, div, Diagonal::Up).unwrap(),
+                density: 1.0,
+                law: law.clone(),
+                dirichlet: vec![],
+                traction: vec![],
+                body_force: [Field::Constant(0.0), Field::Constant(0.0)],
+                mass: MassMatrix::Consistent,
+                regions: vec![],
+            })
+            .unwrap(),
+        )
+    };
+    let master = block([0.0, -0.5], [1.0, 0.5], [4, 2]);
+    let slave = block([-0.45, -0.25], [0.2, 0.2], [1, 1]);
+    let bodies = BodySet::new(vec![slave, master]).unwrap();
+    let top = |b: usize| {
+        ContactSurface::new(b, bodies.body(b), &BoundarySelector::side(RectangleSide::Top), "top")
+            .unwrap()
+    };
+    let pairs = vec![ContactPair {
+        slave: top(0),
+        master: PairMaster::Surface(top(1)),
+        law: PairLaw {
+            enforcement: Enforcement::Lagrange,
+            friction: 0.0,
+        },
+    }];
+    let mut v = vec![0.0; bodies.dofs()];
+    bodies.rigid_velocity(0, [1.0, 0.0], 0.0, [0.0, 0.0], &mut v);
+    let n = bodies.dofs();
+    MultibodySolver::new(
+        MultibodyProblem {
+            bodies,
+            pairs,
+            scheme: MultibodyScheme::EnergyMomentum,
+            final_time: 0.3,
+            steps: 30,
+            initial_displacement: vec![0.0; n],
+            initial_velocity: v,
+        },
+        MultibodyParams {
+            allow_energy_gain: vec![allow],
+            ..MultibodyParams::default()
+        },
+    )
+    .unwrap()
+}
+
+/// Issue 31: an energy–momentum run whose energy rose through a constraint's positive work (a node
+/// re-activated from inside the master) is a typed `EnergyGain` error naming the step, the
+/// constraint and its work, E and E/E_0 — and the same run completes when the pair allows it,
+/// with E above E_0 and the positive work flagged by the audit.
+#[test]
+fn energy_gain_through_a_node_entering_from_inside_is_refused_unless_the_pair_allows_it() {
+    let err = side_entry(false).solve().expect_err("an energy gain");
+    let Error::Solve(SolveError::EnergyGain {
+        energy,
+        initial,
+        ratio,
+        rise,
+        tolerance,
+        constraint,
+        kind,
+        work,
+        ..
+    }) = &err
+    else {
+        panic!("expected EnergyGain, got {err}");
+    };
+    assert!(*rise > *tolerance && *work > 0.0, "{err}");
+    assert!(*energy > *initial && (ratio - energy / initial).abs() < 1e-15, "{err}");
+    assert!(constraint.starts_with("pair 0 slave node"), "{constraint}");
+    assert_eq!(kind, "activation");
+    let message = err.to_string();
+    assert!(message.contains("allow_energy_gain"), "{message}");
+    let sol = side_entry(true).solve().expect("allowed");
+    let s = sol.summary();
+    assert!(s.energy_rise_ratio > 1.0 && s.final_energy_ratio > 1.0, "{s:?}");
+    assert!(s.positive_set_work_steps >= 1 && s.positive_set_work_relative > 0.0, "{s:?}");
 }

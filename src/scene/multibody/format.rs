@@ -195,6 +195,12 @@ pub struct ContactPairSection {
     /// (default 0: frictionless, no friction code runs).
     #[serde(default)]
     pub friction: f64,
+    /// Accept an energy–momentum run whose energy rises through this pair's positive activation
+    /// or segment-switch work, a node re-entering the master from inside (default false: the run
+    /// stops with a typed energy-gain error naming the step, the node and the work;
+    /// docs/multibody.md §8).
+    #[serde(default)]
+    pub allow_energy_gain: bool,
 }
 
 /// One side of a contact pair: a body and a part of its boundary.
