@@ -19,7 +19,11 @@ use contactlab::model::multibody::surface::ContactSurface;
 use contactlab::model::quasistatic::plane::BoundarySelector;
 
 fn body(mesh: TriangleMesh) -> Arc<PlaneBody> {
-    let mass = if std::env::var("LUMPED").is_ok() { MassMatrix::Lumped } else { MassMatrix::Consistent };
+    let mass = if std::env::var("LUMPED").is_ok() {
+        MassMatrix::Lumped
+    } else {
+        MassMatrix::Consistent
+    };
     let law: Arc<dyn Hyperelastic2d> =
         Arc::new(LinearElastic::from_young_poisson(1.0, 0.0).unwrap());
     Arc::new(
@@ -40,7 +44,14 @@ fn body(mesh: TriangleMesh) -> Arc<PlaneBody> {
 /// Two bars [−1 − g/2, −g/2] and [g/2, 1 + g/2] × [0, 0.1] (M elements along, one row), at ±v,
 /// k = h/c (Courant 1), T = 2.6 (contact over [g/(2v), g/(2v) + 2]).
 fn bars(scheme: MultibodyScheme, m: usize, v0: f64, two_pass: bool) -> MultibodySolver {
-    let rows: usize = if std::env::var("SQUARE").is_ok() { m / 10 } else { std::env::var("ROWS").ok().and_then(|s| s.parse().ok()).unwrap_or(1) };
+    let rows: usize = if std::env::var("SQUARE").is_ok() {
+        m / 10
+    } else {
+        std::env::var("ROWS")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(1)
+    };
     bars_with(scheme, m, rows, v0, two_pass)
 }
 
@@ -49,14 +60,27 @@ fn bars_rows(scheme: MultibodyScheme, m: usize, rows: usize, v0: f64) -> Multibo
     bars_with(scheme, m, rows, v0, false)
 }
 
-fn bars_with(scheme: MultibodyScheme, m: usize, rows: usize, v0: f64, two_pass: bool) -> MultibodySolver {
+fn bars_with(
+    scheme: MultibodyScheme,
+    m: usize,
+    rows: usize,
+    v0: f64,
+    two_pass: bool,
+) -> MultibodySolver {
     let (l, hgt, gap) = (1.0, 0.1, 0.02);
-    let dl = if std::env::var("DL").is_ok() { Diagonal::Down } else { Diagonal::Up };
-    let dr = if std::env::var("DR").is_ok() { Diagonal::Down } else { Diagonal::Up };
+    let dl = if std::env::var("DL").is_ok() {
+        Diagonal::Down
+    } else {
+        Diagonal::Up
+    };
+    let dr = if std::env::var("DR").is_ok() {
+        Diagonal::Down
+    } else {
+        Diagonal::Up
+    };
     let left =
         body(TriangleMesh::rectangle([-l - 0.5 * gap, 0.0], [l, hgt], [m, rows], dl).unwrap());
-    let right =
-        body(TriangleMesh::rectangle([0.5 * gap, 0.0], [l, hgt], [m, rows], dr).unwrap());
+    let right = body(TriangleMesh::rectangle([0.5 * gap, 0.0], [l, hgt], [m, rows], dr).unwrap());
     let bodies = BodySet::new(vec![left, right]).unwrap();
     let side = |b: usize, s: RectangleSide| {
         ContactSurface::new(b, bodies.body(b), &BoundarySelector::side(s), "side").unwrap()
@@ -119,7 +143,10 @@ fn probe() {
         _ => MultibodyScheme::EnergyMomentum,
     };
     let two = std::env::var("TWO").is_ok();
-    let v0: f64 = std::env::var("V").ok().and_then(|s| s.parse().ok()).unwrap_or(0.1);
+    let v0: f64 = std::env::var("V")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0.1);
     let ms: Vec<usize> = std::env::var("MS")
         .unwrap_or("10,20,40,80".into())
         .split(',')
@@ -131,7 +158,14 @@ fn probe() {
         let mut lines = Vec::new();
         let mut vy_max = 0.0f64;
         let mut rel_max = 0.0f64;
-        let rows: usize = if std::env::var("SQUARE").is_ok() { m / 10 } else { std::env::var("ROWS").ok().and_then(|s| s.parse().ok()).unwrap_or(1) };
+        let rows: usize = if std::env::var("SQUARE").is_ok() {
+            m / 10
+        } else {
+            std::env::var("ROWS")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(1)
+        };
         let res = solver.solve_with(&mut |view| {
             {
                 let b = &solver.problem().bodies;
@@ -172,7 +206,11 @@ fn probe() {
                 let e0 = sol.records[0].energy;
                 let e1 = sol.records.last().unwrap().energy;
                 let vb = centre_velocity(&solver, &sol.final_velocity, 0);
-                println!("  max corner |vy|/v {:.3} max |y_s - y_m| / (H/rows) {:.4}", vy_max / v0, rel_max / (0.1 / rows as f64));
+                println!(
+                    "  max corner |vy|/v {:.3} max |y_s - y_m| / (H/rows) {:.4}",
+                    vy_max / v0,
+                    rel_max / (0.1 / rows as f64)
+                );
                 println!(
                     "M {m}: E_end/E0 {:.6} rebound/v {:.6} act {:.3e} releases {} switches {} id {:.2e}",
                     e1 / e0,
@@ -183,7 +221,11 @@ fn probe() {
                     s.identity_ratio
                 );
             }
-            Err(e) => println!("M {m}: error {e}\n  max corner |vy|/v {:.3} max |y_s - y_m| / (H/rows) {:.4}", vy_max / v0, rel_max / (0.1 / rows as f64)),
+            Err(e) => println!(
+                "M {m}: error {e}\n  max corner |vy|/v {:.3} max |y_s - y_m| / (H/rows) {:.4}",
+                vy_max / v0,
+                rel_max / (0.1 / rows as f64)
+            ),
         }
     }
 }
@@ -275,8 +317,13 @@ fn side_entry(allow: bool) -> MultibodySolver {
     let slave = block([-0.45, -0.25], [0.2, 0.2], [1, 1]);
     let bodies = BodySet::new(vec![slave, master]).unwrap();
     let top = |b: usize| {
-        ContactSurface::new(b, bodies.body(b), &BoundarySelector::side(RectangleSide::Top), "top")
-            .unwrap()
+        ContactSurface::new(
+            b,
+            bodies.body(b),
+            &BoundarySelector::side(RectangleSide::Top),
+            "top",
+        )
+        .unwrap()
     };
     let pairs = vec![ContactPair {
         slave: top(0),
@@ -329,13 +376,22 @@ fn energy_gain_through_a_node_entering_from_inside_is_refused_unless_the_pair_al
         panic!("expected EnergyGain, got {err}");
     };
     assert!(*rise > *tolerance && *work > 0.0, "{err}");
-    assert!(*energy > *initial && (ratio - energy / initial).abs() < 1e-15, "{err}");
+    assert!(
+        *energy > *initial && (ratio - energy / initial).abs() < 1e-15,
+        "{err}"
+    );
     assert!(constraint.starts_with("pair 0 slave node"), "{constraint}");
     assert_eq!(kind, "activation");
     let message = err.to_string();
     assert!(message.contains("allow_energy_gain"), "{message}");
     let sol = side_entry(true).solve().expect("allowed");
     let s = sol.summary();
-    assert!(s.energy_rise_ratio > 1.0 && s.final_energy_ratio > 1.0, "{s:?}");
-    assert!(s.positive_set_work_steps >= 1 && s.positive_set_work_relative > 0.0, "{s:?}");
+    assert!(
+        s.energy_rise_ratio > 1.0 && s.final_energy_ratio > 1.0,
+        "{s:?}"
+    );
+    assert!(
+        s.positive_set_work_steps >= 1 && s.positive_set_work_relative > 0.0,
+        "{s:?}"
+    );
 }

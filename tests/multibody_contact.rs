@@ -342,7 +342,10 @@ fn corner_released_past_a_free_end_then_reentering_is_a_typed_energy_gain_error(
     );
     let message = solver.solve().expect_err("a typed error").to_string();
     assert!(message.contains("the energy rose"), "{message}");
-    assert!(message.contains("re-entered the master from inside"), "{message}");
+    assert!(
+        message.contains("re-entered the master from inside"),
+        "{message}"
+    );
 }
 
 /// The patch test: a block pressed by p onto a block with a non-matching interface; the stress

@@ -210,10 +210,8 @@ impl EnergyGuard {
     /// Takes the next step's record; returns (rise_n, tol_n).
     pub fn step(&mut self, r: &MultibodyRecord) -> (f64, f64) {
         self.supplied += r.external_work + r.friction_work;
-        self.scale += r.identity_scale
-            + r.external_work.abs()
-            + r.friction_work.abs()
-            + r.energy.abs();
+        self.scale +=
+            r.identity_scale + r.external_work.abs() + r.friction_work.abs() + r.energy.abs();
         self.newton += r.newton_bound + r.holding_gap_work;
         let rise = r.energy - self.e0 - self.supplied;
         let tol = ROUND_OFF_CONSTANT * f64::EPSILON * self.scale + self.newton;

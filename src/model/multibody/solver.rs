@@ -798,7 +798,13 @@ impl MultibodySolver {
         let Some((at, (pair, slave, segment, switched, work))) = *positive else {
             return Ok(());
         };
-        if self.params.allow_energy_gain.get(pair).copied().unwrap_or(false) {
+        if self
+            .params
+            .allow_energy_gain
+            .get(pair)
+            .copied()
+            .unwrap_or(false)
+        {
             return Ok(());
         }
         let e0 = guard.initial();
@@ -815,7 +821,12 @@ impl MultibodySolver {
             rise,
             tolerance,
             constraint: format!("pair {pair} slave node {slave} on {master} (in step {at})"),
-            kind: if switched { "segment-switch" } else { "activation" }.to_string(),
+            kind: if switched {
+                "segment-switch"
+            } else {
+                "activation"
+            }
+            .to_string(),
             work,
         })
     }

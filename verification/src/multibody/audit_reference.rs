@@ -207,10 +207,7 @@ fn fields(s: &MultibodySummary) -> [(&'static str, f64); 22] {
         ("max_newton_iterations", s.max_newton_iterations as f64),
         ("steps_with_contact", s.steps_with_contact as f64),
         ("steps_with_set_change", s.steps_with_set_change as f64),
-        (
-            "positive_set_work_relative",
-            s.positive_set_work_relative,
-        ),
+        ("positive_set_work_relative", s.positive_set_work_relative),
         ("positive_set_work_steps", s.positive_set_work_steps as f64),
         ("energy_rise_ratio", s.energy_rise_ratio),
         ("final_energy_ratio", s.final_energy_ratio),

@@ -135,7 +135,11 @@ pub fn write_scene(scene: &Scene, source: &str, out: &Path) -> Result<String, St
         .map_err(|e| format!("{}: {e}", out.join(name).display()))?;
     plots::write(scene, &title, &run, out).map_err(|e| format!("{source}: {e}"))?;
     let mut text = summary_text(scene, source, &run, &summary);
-    let multipliers = scene.problem.pairs.iter().any(|p| p.law.has_normal_multiplier());
+    let multipliers = scene
+        .problem
+        .pairs
+        .iter()
+        .any(|p| p.law.has_normal_multiplier());
     if let Some(w) = contactlab::model::multibody::audit::scheme_energy_warning(
         scene.problem.scheme,
         multipliers,

@@ -178,7 +178,10 @@ mod tests {
         // nodes at 0, 0.27, 0.52 moving at 1 towards the end 0.6 of a segment 0.1: the threshold
         // is 0.6 + r 0.1 (r = RELEASE_TOLERANCE = 0.5: 0.65); node 0.52 passes it at t = 0.13,
         // node 0.27 at 0.38, node 0 at 0.65
-        assert_eq!(RELEASE_TOLERANCE, 0.5, "the hand count below assumes r = 0.5");
+        assert_eq!(
+            RELEASE_TOLERANCE, 0.5,
+            "the hand count below assumes r = 0.5"
+        );
         let s = SlideKinematics {
             nodes: vec![0.0, 0.27, 0.52],
             end: 0.6,
