@@ -93,9 +93,9 @@ pub struct MultibodyRecord {
     /// segment in the step: positive set-change work, which only a node entering from inside the
     /// master does (from outside it is −λ g₀ ≤ 0, docs/multibody.md §4). Flagged by the audit.
     pub positive_set_work: f64,
-    /// The part of it done by nodes not held at the end of the previous step: entries from
-    /// inside the master (a held node's switch or re-pairing at a concave kink of the master
-    /// gains λ |g₀| with |g₀| ≤ its distance past the vertex times the kink's angle).
+    /// The part of it not done by held nodes switching segment within the step: entries from
+    /// inside the master (a held node's switch at a concave kink of the master gains λ |g₀| with
+    /// |g₀| ≤ its distance past the vertex times the kink's angle, and is only flagged).
     pub positive_entry_work: f64,
     /// The entering constraint with the largest such work: (pair, slave node, master segment or
     /// None for the foundation), whether it switched (else it activated), and its work.

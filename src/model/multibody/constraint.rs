@@ -102,10 +102,10 @@ pub struct Candidate {
     /// The master segment changed during the step.
     pub switched: bool,
     /// The slave node was held (its constraint active) at the end of the previous step, on any
-    /// segment: a set change of a held node (a switch, a re-pairing) measures g₀ anew against
-    /// another segment's line — at a concave kink of the master a small positive work, the
-    /// vertex's non-smoothness — while a node not held that activates with g₀ < 0 entered the
-    /// master from inside.
+    /// segment: a held node that switches segment within the step measures g₀ anew against the
+    /// next segment's line — at a concave kink of the master a small positive work, the
+    /// vertex's non-smoothness — while any other set change with g₀ < 0 entered the master from
+    /// inside.
     pub held: bool,
 }
 
