@@ -98,7 +98,9 @@ pub struct MultibodyRecord {
     /// |g₀| ≤ its distance past the vertex times the kink's angle, and is only flagged).
     pub positive_entry_work: f64,
     /// The entering constraint with the largest such work: (pair, slave node, master segment or
-    /// None for the foundation), whether it switched (else it activated), and its work.
+    /// None for the foundation), whether it switched (else it activated), and its work (not
+    /// written to results files: an absent value would read as a non-finite number there).
+    #[serde(skip)]
     pub positive_worst: Option<(usize, usize, Option<usize>, bool, f64)>,
 }
 
