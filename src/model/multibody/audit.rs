@@ -32,6 +32,10 @@ use serde::Serialize;
 /// rounded evaluations of each term per step, each within ε/2 of either sign).
 pub const ROUND_OFF_CONSTANT: f64 = 2.0;
 
+/// A constraint's positive set-change work: (pair, slave node, master segment or None for the
+/// foundation, whether it switched segment (else it activated), the work λ_N (g₁ − g₀)).
+pub type PositiveWork = (usize, usize, Option<usize>, bool, f64);
+
 /// One step's audit (record 0: the initial state).
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct MultibodyRecord {
@@ -101,7 +105,7 @@ pub struct MultibodyRecord {
     /// None for the foundation), whether it switched (else it activated), and its work (not
     /// written to results files: an absent value would read as a non-finite number there).
     #[serde(skip)]
-    pub positive_worst: Option<(usize, usize, Option<usize>, bool, f64)>,
+    pub positive_worst: Option<PositiveWork>,
 }
 
 impl MultibodyRecord {

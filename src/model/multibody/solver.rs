@@ -10,7 +10,7 @@ use crate::error::{require_positive, Error, InputError, SolveError};
 use crate::model::dynamic::body::ElasticBody;
 use crate::model::dynamic::newton::NewtonParams;
 use crate::model::multibody::audit::{
-    step_tolerance, summarize, EnergyGuard, MultibodyRecord, MultibodySummary,
+    step_tolerance, summarize, EnergyGuard, MultibodyRecord, MultibodySummary, PositiveWork,
 };
 use crate::model::multibody::bodies::BodySet;
 use crate::model::multibody::constraint::{Candidate, Enforcement, PairLaw, Tangent};
@@ -543,7 +543,7 @@ impl MultibodySolver {
             .collect();
         let first = self.record(0, 0.0, &u, &v, &[], &mut mv, &forms);
         let mut guard = EnergyGuard::new(&first);
-        let mut positive: Option<(usize, (usize, usize, Option<usize>, bool, f64))> = None;
+        let mut positive: Option<(usize, PositiveWork)> = None;
         let mut records = vec![first];
         if let Some((q, value)) = records[0].first_non_finite() {
             return Err(
@@ -777,12 +777,11 @@ impl MultibodySolver {
     /// entered the master from inside) — a typed
     /// [`SolveError::EnergyGain`] naming the constraint with the largest such work, unless its
     /// pair allows the gain. `positive` keeps that constraint and its step over the run.
-    #[allow(clippy::type_complexity)]
     fn guard_energy(
         &self,
         rec: &MultibodyRecord,
         guard: &mut EnergyGuard,
-        positive: &mut Option<(usize, (usize, usize, Option<usize>, bool, f64))>,
+        positive: &mut Option<(usize, PositiveWork)>,
     ) -> Result<(), SolveError> {
         let (rise, tolerance) = guard.step(rec);
         if let Some(worst) = rec.positive_worst {
