@@ -958,11 +958,10 @@ impl MultibodySolver {
                 }
                 if set_change && w > 0.0 {
                     rec.positive_set_work += w;
-                    // a held node switching segment within the step is the master vertex's
-                    // non-smoothness (a concave kink: λ |g₀| with |g₀| ≤ its distance past the
-                    // vertex times the kink's angle); any other positive set change — an
-                    // activation, a re-pairing by the search — entered from inside
-                    if !(c.held && c.switched) {
+                    // a held node's switch or re-pairing is the master vertex's non-smoothness
+                    // (a concave kink: λ |g₀| with |g₀| ≤ its distance past the vertex times the
+                    // kink's angle): flagged only; a node not held entered from inside
+                    if !c.held {
                         rec.positive_entry_work += w;
                         if rec.positive_worst.is_none_or(|p| w > p.4) {
                             rec.positive_worst = Some((c.pair, c.slave, c.segment, c.switched, w));
