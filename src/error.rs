@@ -214,6 +214,34 @@ pub enum SolveError {
         row: usize,
         excess: f64,
     },
+    /// An energy–momentum multibody run whose energy rose, beyond the audit's tolerance, without
+    /// external or friction work to supply it: a constraint that activated or switched segment did
+    /// positive work λ (g₁ − g₀) > 0 (a node re-activated from inside the master; the work is
+    /// −λ g₀ ≤ 0 only from outside, docs/multibody.md §4).
+    #[error(
+        "step {step} (t = {time}): the energy rose to E = {energy:e} = {ratio} E_0 (E_0 = \
+         {initial:e}) with no external or friction work to supply it ({rise:e} beyond the work \
+         done, tolerance {tolerance:e}): {constraint} did the {kind} work {work:e} > 0 (it \
+         re-entered the master from inside; the work λ (g₁ − g₀) is −λ g₀ ≤ 0 only from outside) \
+         — a smaller step, two-pass contact, or `allow_energy_gain = true` in its \
+         [[contact_pair]] to accept the gain"
+    )]
+    EnergyGain {
+        step: usize,
+        time: f64,
+        /// E_n and E_0, and E_n / E_0.
+        energy: f64,
+        initial: f64,
+        ratio: f64,
+        /// E_n − E_0 − Σ (W_ext + W_T) and its tolerance.
+        rise: f64,
+        tolerance: f64,
+        /// The constraint that did the largest positive work in the step ("pair 0 slave node 10
+        /// on segment 0"), `"activation"` or `"segment-switch"`, and the work.
+        constraint: String,
+        kind: String,
+        work: f64,
+    },
 }
 
 /// A mesh file (Gmsh `.msh`) that cannot be used: which file, where in it, what is wrong.

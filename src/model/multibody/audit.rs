@@ -32,6 +32,10 @@ use serde::Serialize;
 /// rounded evaluations of each term per step, each within ε/2 of either sign).
 pub const ROUND_OFF_CONSTANT: f64 = 2.0;
 
+/// A constraint's positive set-change work: (pair, slave node, master segment or None for the
+/// foundation, whether it switched segment (else it activated), the work λ_N (g₁ − g₀)).
+pub type PositiveWork = (usize, usize, Option<usize>, bool, f64);
+
 /// One step's audit (record 0: the initial state).
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct MultibodyRecord {
@@ -89,6 +93,19 @@ pub struct MultibodyRecord {
     /// The smallest gap of a candidate at t_{n+1} (negative: penetration).
     pub min_gap: f64,
     pub newton_iterations: usize,
+    /// Σ max(0, λ_N (g₁ − g₀)) over the multiplier constraints that activated or switched
+    /// segment in the step: positive set-change work, which only a node entering from inside the
+    /// master does (from outside it is −λ g₀ ≤ 0, docs/multibody.md §4). Flagged by the audit.
+    pub positive_set_work: f64,
+    /// The part of it not done by held nodes switching segment within the step: entries from
+    /// inside the master (a held node's switch at a concave kink of the master gains λ |g₀| with
+    /// |g₀| ≤ its distance past the vertex times the kink's angle, and is only flagged).
+    pub positive_entry_work: f64,
+    /// The entering constraint with the largest such work: (pair, slave node, master segment or
+    /// None for the foundation), whether it switched (else it activated), and its work (not
+    /// written to results files: an absent value would read as a non-finite number there).
+    #[serde(skip)]
+    pub positive_worst: Option<PositiveWork>,
 }
 
 impl MultibodyRecord {
@@ -151,6 +168,92 @@ pub struct MultibodySummary {
     pub steps_with_contact: usize,
     /// Steps in which the active set changed.
     pub steps_with_set_change: usize,
+    /// Σ of the steps' positive set-change work ([`MultibodyRecord::positive_set_work`]) beyond
+    /// the step's round-off tolerance, relative to E_0, and the steps that booked it: the audit's
+    /// flag for a constraint that re-entered from inside.
+    pub positive_set_work_relative: f64,
+    pub positive_set_work_steps: usize,
+    /// max_n of the energy's rise over the work supplied, (E_n − E_0 − Σ_{j≤n} (W_ext + W_T)) over
+    /// its tolerance ([`EnergyGuard`]; 0 when it never rose): > 1 is an energy gain.
+    pub energy_rise_ratio: f64,
+    /// E_N / E_0.
+    pub final_energy_ratio: f64,
+}
+
+/// The energy's rise over the work supplied to it, against the identity's tolerance:
+///
+///   rise_n = E_n − E_0 − Σ_{j≤n} (W_ext,j + W_T,j),
+///   tol_n  = C ε Σ_{j≤n} s_j + Σ_{j≤n} (ν_j + Σ |λ_N| (|g₀| + |g₁|) of the holding constraints),
+///
+/// with C = [`ROUND_OFF_CONSTANT`], s_j the step's round-off scale and ν_j its Newton part (module
+/// docs). For the energy–momentum scheme rise_n = Σ_{j≤n} W_N,j up to the identity's residual, so
+/// rise_n > tol_n means the constraints did positive work: the energy rose with nothing to supply
+/// it. (The activation work −λ g₀ and the holding constraints' round-off gap work are ≤ tol.)
+#[derive(Debug, Clone, Copy)]
+pub struct EnergyGuard {
+    e0: f64,
+    supplied: f64,
+    scale: f64,
+    newton: f64,
+}
+
+impl EnergyGuard {
+    /// The guard from the initial record.
+    pub fn new(first: &MultibodyRecord) -> Self {
+        Self {
+            e0: first.energy,
+            supplied: 0.0,
+            scale: first.identity_scale,
+            newton: 0.0,
+        }
+    }
+
+    /// E_0.
+    pub fn initial(&self) -> f64 {
+        self.e0
+    }
+
+    /// Takes the next step's record; returns (rise_n, tol_n).
+    pub fn step(&mut self, r: &MultibodyRecord) -> (f64, f64) {
+        self.supplied += r.external_work + r.friction_work;
+        self.scale +=
+            r.identity_scale + r.external_work.abs() + r.friction_work.abs() + r.energy.abs();
+        self.newton += r.newton_bound + r.holding_gap_work;
+        let rise = r.energy - self.e0 - self.supplied;
+        let tol = ROUND_OFF_CONSTANT * f64::EPSILON * self.scale + self.newton;
+        (rise, tol.max(f64::MIN_POSITIVE))
+    }
+}
+
+/// The run summary's warning for a scheme whose energy rose at a contact although nothing in the
+/// problem supplies it: Newmark (forces at t_{n+1}) with multipliers (`multipliers`: some pair
+/// carries λ_N). Its constraint forces chatter from step to step at a held contact and the
+/// energy grows — ×5 to ×9 on the head-on bars at every refinement (docs/multibody.md §3.2): a
+/// property of the scheme, not of the run. `None` when the energy did not rise beyond the audit's
+/// tolerance ([`MultibodySummary::energy_rise_ratio`] ≤ 1) or for another scheme.
+pub fn scheme_energy_warning(
+    scheme: crate::model::multibody::scheme::MultibodyScheme,
+    multipliers: bool,
+    s: &MultibodySummary,
+) -> Option<String> {
+    (scheme == crate::model::multibody::scheme::MultibodyScheme::Newmark
+        && multipliers
+        && s.energy_rise_ratio > 1.0)
+        .then(|| {
+            format!(
+                "the energy rose to E_N/E_0 = {:.3} with nothing to supply it: Newmark with \
+                 Lagrange multipliers does not conserve energy at a contact (its constraint \
+                 forces at t_(n+1) chatter from step to step; ×5 to ×9 on the head-on bars at \
+                 every refinement, docs/multibody.md §3.2) — the energy_momentum scheme \
+                 conserves it",
+                s.final_energy_ratio
+            )
+        })
+}
+
+/// The round-off tolerance of one step's works: C ε s_n + ν_n.
+pub fn step_tolerance(r: &MultibodyRecord) -> f64 {
+    (ROUND_OFF_CONSTANT * f64::EPSILON * r.identity_scale + r.newton_bound).max(f64::MIN_POSITIVE)
 }
 
 /// The summary of a run's records.
@@ -168,7 +271,15 @@ pub fn summarize(records: &[MultibodyRecord]) -> MultibodySummary {
     let (mut drift, mut scale, mut newton) = (0.0, first.identity_scale, 0.0);
     let (mut p_round, mut p_newton, mut j_round, mut j_newton) = (0.0, 0.0, 0.0, 0.0);
     let mut friction_max = f64::NEG_INFINITY;
+    let mut guard = EnergyGuard::new(first);
+    let mut positive = 0.0;
     for (prev, r) in records.iter().zip(&records[1..]) {
+        let (rise, tol) = guard.step(r);
+        s.energy_rise_ratio = s.energy_rise_ratio.max(rise / tol);
+        if r.positive_set_work > step_tolerance(r) {
+            positive += r.positive_set_work;
+            s.positive_set_work_steps += 1;
+        }
         s.energy_drift = s.energy_drift.max((r.energy - first.energy).abs() / e0);
         drift += r.identity_residual;
         scale += r.identity_scale;
@@ -218,5 +329,7 @@ pub fn summarize(records: &[MultibodyRecord]) -> MultibodySummary {
         friction_max
     };
     s.activation_relative = s.activation_work.abs() / e0;
+    s.positive_set_work_relative = positive / e0;
+    s.final_energy_ratio = records[records.len() - 1].energy / e0;
     s
 }

@@ -101,6 +101,12 @@ pub struct Candidate {
     pub tangent: Tangent,
     /// The master segment changed during the step.
     pub switched: bool,
+    /// The slave node was held (its constraint active) at the end of the previous step, on any
+    /// segment: a held node that switches segment within the step measures g₀ anew against the
+    /// next segment's line — at a concave kink of the master a small positive work, the
+    /// vertex's non-smoothness — while any other set change with g₀ < 0 entered the master from
+    /// inside.
+    pub held: bool,
 }
 
 /// The pair law a candidate obeys.
@@ -339,6 +345,7 @@ mod tests {
             was_active: false,
             tangent: Tangent::Free,
             switched: false,
+            held: false,
         }
     }
 

@@ -9,7 +9,9 @@ use serde::Serialize;
 use crate::error::{require_positive, Error, InputError, SolveError};
 use crate::model::dynamic::body::ElasticBody;
 use crate::model::dynamic::newton::NewtonParams;
-use crate::model::multibody::audit::{summarize, MultibodyRecord, MultibodySummary};
+use crate::model::multibody::audit::{
+    step_tolerance, summarize, EnergyGuard, MultibodyRecord, MultibodySummary, PositiveWork,
+};
 use crate::model::multibody::bodies::BodySet;
 use crate::model::multibody::constraint::{Candidate, Enforcement, PairLaw, Tangent};
 use crate::model::multibody::invariants::{InvariantForms, Local6};
@@ -62,6 +64,9 @@ pub struct MultibodyParams {
     /// The search margin as a multiple of the longest master segment (plus twice the distance the
     /// fastest node covers in a step).
     pub search_margin: f64,
+    /// Per solver pair: accept an energy–momentum run whose energy rose through this pair's
+    /// positive activation or switch work (otherwise [`SolveError::EnergyGain`]); empty: none.
+    pub allow_energy_gain: Vec<bool>,
 }
 
 impl Default for MultibodyParams {
@@ -71,6 +76,7 @@ impl Default for MultibodyParams {
             max_switches: 4,
             snapshot_times: Vec::new(),
             search_margin: 1.0,
+            allow_energy_gain: Vec::new(),
         }
     }
 }
@@ -317,9 +323,11 @@ impl MultibodySolver {
                 was_active: false,
                 tangent: Tangent::Free,
                 switched: false,
+                held: false,
             };
             let carry = |c: &mut Candidate| {
                 if let Some(Some(prev)) = carried.get(p).and_then(|v| v.get(c.slave_index)) {
+                    c.held = prev.active;
                     c.lambda_n = prev.lambda_n;
                     c.lambda_t = prev.lambda_t;
                     if prev.segment == c.segment {
@@ -534,6 +542,8 @@ impl MultibodySolver {
             .map(|p| vec![None; p.slave.nodes.len()])
             .collect();
         let first = self.record(0, 0.0, &u, &v, &[], &mut mv, &forms);
+        let mut guard = EnergyGuard::new(&first);
+        let mut positive: Option<(usize, PositiveWork)> = None;
         let mut records = vec![first];
         if let Some((q, value)) = records[0].first_non_finite() {
             return Err(
@@ -724,6 +734,7 @@ impl MultibodySolver {
                 }
                 .into());
             }
+            self.guard_energy(&rec, &mut guard, &mut positive)?;
             records.push(rec);
             for row in carried.iter_mut() {
                 row.iter_mut().for_each(|c| *c = None);
@@ -757,6 +768,65 @@ impl MultibodySolver {
             final_displacement: u,
             final_velocity: v,
             stats,
+        })
+    }
+
+    /// The energy guard of an energy–momentum run ([`EnergyGuard`]): the energy rose beyond the
+    /// identity's tolerance over the work supplied, after a multiplier constraint of a node not
+    /// held before did positive activation or switch work beyond its step's round-off (it
+    /// entered the master from inside) — a typed
+    /// [`SolveError::EnergyGain`] naming the constraint with the largest such work, unless its
+    /// pair allows the gain. `positive` keeps that constraint and its step over the run.
+    fn guard_energy(
+        &self,
+        rec: &MultibodyRecord,
+        guard: &mut EnergyGuard,
+        positive: &mut Option<(usize, PositiveWork)>,
+    ) -> Result<(), SolveError> {
+        let (rise, tolerance) = guard.step(rec);
+        if let Some(worst) = rec.positive_worst {
+            if rec.positive_entry_work > step_tolerance(rec)
+                && positive.is_none_or(|(_, p)| worst.4 > p.4)
+            {
+                *positive = Some((rec.step, worst));
+            }
+        }
+        if self.problem.scheme != MultibodyScheme::EnergyMomentum || rise <= tolerance {
+            return Ok(());
+        }
+        let Some((at, (pair, slave, segment, switched, work))) = *positive else {
+            return Ok(());
+        };
+        if self
+            .params
+            .allow_energy_gain
+            .get(pair)
+            .copied()
+            .unwrap_or(false)
+        {
+            return Ok(());
+        }
+        let e0 = guard.initial();
+        let master = match segment {
+            Some(s) => format!("segment {s}"),
+            None => "the foundation".to_string(),
+        };
+        Err(SolveError::EnergyGain {
+            step: rec.step,
+            time: rec.time,
+            energy: rec.energy,
+            initial: e0,
+            ratio: rec.energy / e0,
+            rise,
+            tolerance,
+            constraint: format!("pair {pair} slave node {slave} on {master} (in step {at})"),
+            kind: if switched {
+                "segment-switch"
+            } else {
+                "activation"
+            }
+            .to_string(),
+            work,
         })
     }
 
@@ -879,11 +949,24 @@ impl MultibodySolver {
                 if c.active && c.was_active && !c.switched {
                     rec.holding_gap_work += c.lambda_n.abs() * (c.g0.abs() + c.g1.abs());
                 }
+                let set_change = c.switched || (c.active && !c.was_active);
                 if c.switched {
                     rec.switch_work += w;
                     rec.switches += 1;
                 } else if c.active && !c.was_active {
                     rec.activation_work += w;
+                }
+                if set_change && w > 0.0 {
+                    rec.positive_set_work += w;
+                    // a held node's switch or re-pairing is the master vertex's non-smoothness
+                    // (a concave kink: λ |g₀| with |g₀| ≤ its distance past the vertex times the
+                    // kink's angle): flagged only; a node not held entered from inside
+                    if !c.held {
+                        rec.positive_entry_work += w;
+                        if rec.positive_worst.is_none_or(|p| w > p.4) {
+                            rec.positive_worst = Some((c.pair, c.slave, c.segment, c.switched, w));
+                        }
+                    }
                 }
             }
             if c.active && !c.was_active && !c.switched {

@@ -203,6 +203,12 @@ pub struct ContactPairSection {
     /// master's boundary (an initial displacement, whose stored energy is part of E₀).
     #[serde(default)]
     pub initial_overlap: InitialOverlap,
+    /// Accept an energy–momentum run whose energy rises through this pair's positive activation
+    /// or segment-switch work, a node re-entering the master from inside (default false: the run
+    /// stops with a typed energy-gain error naming the step, the node and the work;
+    /// docs/multibody.md §8).
+    #[serde(default)]
+    pub allow_energy_gain: bool,
 }
 
 /// One side of a contact pair: a body and a part of its boundary.

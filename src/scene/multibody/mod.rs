@@ -181,6 +181,11 @@ impl MultibodyScene {
         }
         let bodies = BodySet::new(bodies)?;
         let (pairs, origins) = pairs::pairs(&file.contact_pair, &names, &bodies, &gmsh)?;
+        let mut params = params;
+        params.allow_energy_gain = origins
+            .iter()
+            .map(|o| file.contact_pair[o.section].allow_energy_gain)
+            .collect();
         let initial_velocity = body::initial_velocity(&file.body, &bodies)?;
         let modes: Vec<_> = file
             .contact_pair

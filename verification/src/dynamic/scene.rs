@@ -154,6 +154,18 @@ pub fn error_json(e: &LabError) -> serde_json::Value {
         LabError::Solve(SolveError::Eigenproblem { at, .. }) => json!({
             "message": e.to_string(), "kind": "eigenproblem", "at": at,
         }),
+        LabError::Solve(SolveError::EnergyGain {
+            step,
+            time,
+            energy,
+            initial,
+            constraint,
+            work,
+            ..
+        }) => json!({
+            "message": e.to_string(), "kind": "energy_gain", "step": step, "time": time,
+            "energy": energy, "initial": initial, "constraint": constraint, "work": work,
+        }),
         LabError::Input(_) => json!({ "message": e.to_string(), "kind": "input" }),
         LabError::Scene { .. } => json!({ "message": e.to_string(), "kind": "scene" }),
         LabError::Mesh(_) => json!({ "message": e.to_string(), "kind": "mesh" }),

@@ -152,11 +152,42 @@ pub fn reference_summary(records: &[MultibodyRecord]) -> MultibodySummary {
         max_newton_iterations: steps.iter().map(|r| r.newton_iterations).max().unwrap_or(0),
         steps_with_contact: steps.iter().filter(|r| r.active > 0).count(),
         steps_with_set_change: steps.len() - unchanged_steps().count(),
+        positive_set_work_relative: steps
+            .iter()
+            .zip(&tol)
+            .filter(|(r, t)| r.positive_set_work > t.step)
+            .map(|(r, _)| r.positive_set_work)
+            .sum::<f64>()
+            / e0,
+        positive_set_work_steps: steps
+            .iter()
+            .zip(&tol)
+            .filter(|(r, t)| r.positive_set_work > t.step)
+            .count(),
+        energy_rise_ratio: energy_rise_ratio(first, steps),
+        final_energy_ratio: steps.last().map_or(first.energy, |r| r.energy) / e0,
     }
 }
 
+/// max_n (E_n − E_0 − Σ_{j≤n} (W_ext + W_T)_j) / (C ε (s_0 + Σ_{j≤n} (s_j + |W_ext| + |W_T| +
+/// |E_j|)) + Σ_{j≤n} (ν_j + the holding constraints' gap work)): the energy's rise over the
+/// work supplied, in its tolerances (0 when it never rose).
+fn energy_rise_ratio(first: &MultibodyRecord, steps: &[MultibodyRecord]) -> f64 {
+    let supplied = running(steps, |r| r.external_work + r.friction_work);
+    let scale = running(steps, |r| {
+        r.identity_scale + r.external_work.abs() + r.friction_work.abs() + r.energy.abs()
+    });
+    let newton = running(steps, |r| r.newton_bound + r.holding_gap_work);
+    let ratios = steps.iter().enumerate().map(|(i, r)| {
+        let rise = r.energy - first.energy - supplied[i];
+        let tol = C * f64::EPSILON * (first.identity_scale + scale[i]) + newton[i];
+        rise / tol.max(tiny())
+    });
+    ratios.fold(0.0, f64::max)
+}
+
 /// Every field of a summary, named.
-fn fields(s: &MultibodySummary) -> [(&'static str, f64); 18] {
+fn fields(s: &MultibodySummary) -> [(&'static str, f64); 22] {
     [
         ("steps", s.steps as f64),
         ("energy_drift", s.energy_drift),
@@ -176,6 +207,10 @@ fn fields(s: &MultibodySummary) -> [(&'static str, f64); 18] {
         ("max_newton_iterations", s.max_newton_iterations as f64),
         ("steps_with_contact", s.steps_with_contact as f64),
         ("steps_with_set_change", s.steps_with_set_change as f64),
+        ("positive_set_work_relative", s.positive_set_work_relative),
+        ("positive_set_work_steps", s.positive_set_work_steps as f64),
+        ("energy_rise_ratio", s.energy_rise_ratio),
+        ("final_energy_ratio", s.final_energy_ratio),
     ]
 }
 

@@ -140,6 +140,18 @@ pub fn write_scene(scene: &Scene, source: &str, out: &Path) -> Result<String, St
         .map_err(|e| format!("{}: {e}", out.join("history.csv").display()))?;
     plots::write(scene, &title, &run, out).map_err(|e| format!("{source}: {e}"))?;
     let mut text = summary_text(scene, source, &run, &summary);
+    let multipliers = scene
+        .problem
+        .pairs
+        .iter()
+        .any(|p| p.law.has_normal_multiplier());
+    if let Some(w) = contactlab::model::multibody::audit::scheme_energy_warning(
+        scene.problem.scheme,
+        multipliers,
+        &summary,
+    ) {
+        text.push_str(&format!("\n{source}: warning: {w}"));
+    }
     if scene.file.output.vtk {
         let frames = vtk::frames(scene, &run.snapshots);
         crate::vtk::write_series(out, "solution", &title, &frames)

@@ -13,7 +13,7 @@
 //! exactly on the master face (g = 0, no normal relative velocity), the rigid translations
 //! u_b = v_b t are the solution: no stress, no contact force. A slave node at X then lies beyond
 //! the master's free end x_e by X + (v_s − v_m) t − x_e; the solver releases it once that exceeds
-//! the release tolerance r = 2 % of the end segment h (contactlab's `RELEASE_TOLERANCE`), at the
+//! the release tolerance r h (r = 0.5: half the end segment h) (contactlab's `RELEASE_TOLERANCE`), at the
 //! first step t_n = n k at which it does.
 
 use contactlab::model::multibody::step::RELEASE_TOLERANCE;
@@ -175,10 +175,15 @@ mod tests {
 
     #[test]
     fn slide_releases_each_node_at_the_first_step_beyond_the_tolerance() {
-        // nodes at 0, 0.25, 0.5 moving at 1 towards the end 0.6 of a segment 0.1: the threshold
-        // is 0.602; node 0.5 passes it at t = 0.102, node 0.25 at 0.352, node 0 at 0.602
+        // nodes at 0, 0.27, 0.52 moving at 1 towards the end 0.6 of a segment 0.1: the threshold
+        // is 0.6 + r 0.1 (r = RELEASE_TOLERANCE = 0.5: 0.65); node 0.52 passes it at t = 0.13,
+        // node 0.27 at 0.38, node 0 at 0.65
+        assert_eq!(
+            RELEASE_TOLERANCE, 0.5,
+            "the hand count below assumes r = 0.5"
+        );
         let s = SlideKinematics {
-            nodes: vec![0.0, 0.25, 0.5],
+            nodes: vec![0.0, 0.27, 0.52],
             end: 0.6,
             segment: 0.1,
             speed: 1.0,
@@ -187,10 +192,10 @@ mod tests {
         assert_eq!(s.release_step(1, 0.05, 10), Some(8));
         assert_eq!(s.release_step(0, 0.05, 10), None);
         assert_eq!(s.released(0.05, 10), 2);
-        assert_eq!(s.released(0.05, 13), 3);
-        assert!((s.beyond(2, 0.2) - 1.0).abs() < 1e-12);
-        // the closest approach to the threshold: node 0 at t = 0.5 is 0.102 short, 1.02 segments;
-        // node 2 at t = 0.1 is 0.002 short: 0.02 segments
-        assert!((s.clearance(0.05, 10) - 0.02).abs() < 1e-9);
+        assert_eq!(s.released(0.05, 14), 3);
+        assert!((s.beyond(2, 0.2) - 1.2).abs() < 1e-12);
+        // the closest approach to the threshold over steps 1..10: node 0.52 at t = 0.15 and node
+        // 0.27 at t = 0.4 are 0.2 segments past it
+        assert!((s.clearance(0.05, 10) - 0.2).abs() < 1e-9);
     }
 }

@@ -222,7 +222,7 @@ pub fn study(
                     v.expected.len()
                 ),
                 mismatched == 0,
-                "each node's first step off the candidate list = the first step past x_e + 2 % h",
+                "each node's first step off the candidate list = the first step past x_e + r h (r = RELEASE_TOLERANCE)",
             ));
         }
         exact.push(Check::at_most(
@@ -329,7 +329,7 @@ pub fn study(
     let k = variants[0].run.k;
     report.tables.push(Table {
         title: format!(
-            "slide-off (v_t = {}, k = {k:.5}, master end x_e = {}, end segment h = {}; release at x > x_e + 2 % h)",
+            "slide-off (v_t = {}, k = {k:.5}, master end x_e = {}, end segment h = {}; release at x > x_e + r h, r = RELEASE_TOLERANCE)",
             s.tangential_speed,
             s.master.size[0],
             s.master.size[0] / s.master.divisions[0] as f64
