@@ -124,24 +124,20 @@ pub fn require_increasing_from_zero(
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolveError {
     /// The nonsmooth step equation was not solved to round-off within the iteration budget.
-    /// `residual`, `tolerance` and `floor` are all relative to the residual's scale (the sum of
-    /// the magnitudes of its terms), so they compare like with like: the loop stops when the
-    /// residual is below the tolerance or at the computed round-off floor, whichever is larger.
+    /// `residual` and `tolerance` are on the same scale, so they compare like with like: both
+    /// relative to the residual's scale (the plane and multibody steps; there `tolerance` is the
+    /// effective threshold max(requested tolerance, computed round-off floor)) or both absolute
+    /// (the rod's scalar contact equation).
     #[error(
         "step {step} (t = {time}): semismooth Newton did not converge in {iterations} iterations \
-         (relative residual {residual:e}; relative tolerance {tolerance:e}; round-off floor \
-         {floor:e}, both relative to the residual's scale)"
+         (residual {residual:e}, tolerance {tolerance:e})"
     )]
     NewtonNotConverged {
         step: usize,
         time: f64,
         iterations: usize,
-        /// ‖residual‖ / scale at the last iterate.
         residual: f64,
-        /// The requested relative tolerance.
         tolerance: f64,
-        /// The computed round-off floor of the residual, relative to the same scale.
-        floor: f64,
     },
     /// The active set of a contact problem kept changing between the same states: the
     /// semismooth Newton method cycled instead of converging.

@@ -965,9 +965,8 @@ pub fn solve_step(
         time: data.at.time,
         iterations: params.max_iterations,
         residual: last_relative.0,
-        tolerance: params.tolerance,
         // the worst row's relative threshold max(tol, floor_i / s): its floor where above tol
-        floor: last_relative.1,
+        tolerance: last_relative.1,
     })
 }
 

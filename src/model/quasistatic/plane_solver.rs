@@ -413,8 +413,8 @@ impl PlaneSolver {
                                 time: t,
                                 iterations,
                                 residual,
-                                tolerance: self.params.newton.relative_tolerance,
-                                floor,
+                                // the effective threshold: the floor where it is above the tolerance
+                                tolerance: self.params.newton.relative_tolerance.max(floor),
                             },
                             NewtonFailure::Singular(e) => e,
                             NewtonFailure::NonFinite => SolveError::NonFinite {
@@ -518,9 +518,9 @@ impl PlaneSolver {
                                 time: t,
                                 iterations,
                                 residual,
-                                tolerance: params.relative_tolerance,
-                                floor,
-                            })
+                                // the effective threshold: the floor where it is above the tolerance
+                                tolerance: params.relative_tolerance.max(floor),
+                            });
                         }
                         Err(ContactFailure::NonFinite) => {
                             return Err(SolveError::NonFinite {

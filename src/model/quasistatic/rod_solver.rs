@@ -421,20 +421,13 @@ impl RodSolver {
                 value: e.residual,
                 hint: String::new(),
             }),
-            Err(e) => {
-                // e.tolerance = τ · scale (absolute): relative to the scale, like the tolerance
-                let tolerance = self.params.newton.relative_tolerance;
-                let scale = (e.tolerance / tolerance).max(f64::MIN_POSITIVE);
-                Err(SolveError::NewtonNotConverged {
-                    step: n,
-                    time: t,
-                    iterations: e.iterations,
-                    residual: e.residual.abs() / scale,
-                    tolerance,
-                    // r + c p_ν(r) − w*: three terms, each representable to ε
-                    floor: 4.0 * f64::EPSILON,
-                })
-            }
+            Err(e) => Err(SolveError::NewtonNotConverged {
+                step: n,
+                time: t,
+                iterations: e.iterations,
+                residual: e.residual,
+                tolerance: e.tolerance,
+            }),
         }
     }
 

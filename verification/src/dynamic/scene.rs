@@ -93,11 +93,10 @@ pub fn error_json(e: &LabError) -> serde_json::Value {
             iterations,
             residual,
             tolerance,
-            floor,
         }) => json!({
             "message": e.to_string(), "kind": "newton_not_converged", "step": step, "time": time,
             "iterations": iterations, "residual": finite_or_text(*residual),
-            "tolerance": finite_or_text(*tolerance), "floor": finite_or_text(*floor),
+            "tolerance": finite_or_text(*tolerance),
         }),
         LabError::Solve(SolveError::DynamicNewtonNotConverged {
             step,

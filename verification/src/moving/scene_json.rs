@@ -82,6 +82,8 @@ pub struct MapJson<'a> {
     max_real_part: Vec<f64>,
     critical_eigenvalue: Vec<[f64; 2]>,
     tolerance: Vec<f64>,
+    /// ρ = max |λ| per point (the scale of the eigensolver's round-off).
+    spectral_scale: Vec<f64>,
     /// The number of unstable eigenvalues above the resolution limit (the warning layer).
     unresolved_unstable: Vec<usize>,
 }
@@ -101,6 +103,7 @@ pub fn map_json<P: AxisParameter>(m: &StabilityMap<P>) -> MapJson<'_> {
             .map(|a| [a.critical_re, a.critical_im])
             .collect(),
         tolerance: m.points.iter().map(|a| a.tolerance).collect(),
+        spectral_scale: m.points.iter().map(|a| a.spectral_scale).collect(),
         unresolved_unstable: m.points.iter().map(|a| a.unresolved.count).collect(),
     }
 }
