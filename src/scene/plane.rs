@@ -693,7 +693,19 @@ impl PlaneScene {
         };
         let t = &file.time;
         let grid = match (&t.times, t.steps) {
-            (Some(times), None) => TimeGrid::from_times(times.clone())?,
+            (Some(times), None) => {
+                let grid = TimeGrid::from_times(times.clone())?;
+                // Checked here, where the user's key is known (the solver checks it again).
+                if (grid.final_time() - t.final_time).abs() > 1e-12 * t.final_time {
+                    return Err(InputError::new(
+                        format!("time.times[{}]", times.len() - 1),
+                        grid.final_time(),
+                        format!("time.final_time = {} (the last time ends the run)", t.final_time),
+                    )
+                    .into());
+                }
+                grid
+            }
             (None, Some(steps)) => match t.grading {
                 Some(q) if q != 1.0 => TimeGrid::graded(t.final_time, steps, q)?,
                 _ => TimeGrid::uniform(t.final_time, steps)?,

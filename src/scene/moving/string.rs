@@ -199,6 +199,7 @@ impl MovingStringScene {
                     }
                     (Some(mu_h), None) => mu_h,
                     (None, Some(p)) => {
+                        crate::error::require_nonnegative("oscillator.control_parameter", p)?;
                         crate::error::require_positive("oscillator.stiffness", o.stiffness)?;
                         p / osc.contact_stiffness()
                     }

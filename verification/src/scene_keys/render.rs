@@ -16,7 +16,11 @@ pub fn render(models: &[ModelKeys]) -> String {
          `[[dirichlet]]` section. A key marked *required* is required when its section is given; \
          *optional* keys have no default (their absence means something, said in the meaning); \
          unknown keys are errors. A value written *number or expression of x, y, t* is a number \
-         (`10.0`) or a string holding an expression (`\"10*(1 + x*t)\"`). The theory behind the \
+         (`10.0`) or a string holding an expression (`\"10*(1 + x*t)\"`): numbers written as TOML \
+         writes them (`1e-3`, `2.5E+2`, `1_000`), `+ - * / ^`, parentheses, the functions `sin`, \
+         `cos`, `tan`, `exp`, `ln`, `log10`, `sqrt`, `abs`, `floor`, … and `atan2(a, b)`, `min(a, \
+         b)`, `max(a, b)`, the constants `PI`, `E` (also `e`) and `TAU`; a mistake is reported with \
+         its character position. The theory behind the \
          symbols is in [quasistatic.md](quasistatic.md), [dynamic.md](dynamic.md) and \
          [moving_continua.md](moving_continua.md); worked scenes are in \
          [examples/scenes/](../examples/scenes/).\n\n",

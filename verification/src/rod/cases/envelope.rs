@@ -220,6 +220,11 @@ fn past_range_gate() -> GateVerdict {
             "mesh.grading",
         ),
         (
+            "mesh.grading = 10 with 100 elements (ε M^q = 2e4 ≥ 1)",
+            base.replace("elements = 10\n", "elements = 100\ngrading = 10.0\n"),
+            "mesh.grading",
+        ),
+        (
             "mesh.elements = 0",
             base.replace("elements = 10\n", "elements = 0\n"),
             "mesh.elements",
