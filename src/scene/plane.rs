@@ -412,6 +412,11 @@ pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, 
             crate::error::require_positive(&format!("{prefix}.young"), e)?;
         }
     }
+    match m.law.as_str() {
+        "paper" => definite_form(prefix, ("eta", m.eta), ("mu", m.mu))?,
+        "isotropic" => definite_form(prefix, ("a2", m.a2), ("a1", m.a1))?,
+        _ => {}
+    }
     let law: Arc<dyn PlaneLaw> = match m.law.as_str() {
         "plane_stress" => Arc::new(IsotropicLinear::plane_stress(
             get("young", m.young)?,
@@ -444,6 +449,37 @@ pub fn material(prefix: &str, m: &MaterialSection) -> Result<Arc<dyn PlaneLaw>, 
     };
     law.validate(prefix)?;
     Ok(law)
+}
+
+/// The form (L τ) = a1 tr τ δ + a2 τ is positive definite iff a2 > 0 and a2 + 2 a1 > 0: checked on
+/// the keys as written (`mu`, `eta` for the paper's law; `a1`, `a2`), so the message names the one
+/// to change.
+fn definite_form(
+    prefix: &str,
+    (k2, a2): (&str, Option<f64>),
+    (k1, a1): (&str, Option<f64>),
+) -> Result<(), InputError> {
+    let (Some(a2), Some(a1)) = (a2, a1) else {
+        return Ok(());
+    };
+    if !(a2 > 0.0) {
+        return Err(InputError::new(
+            format!("{prefix}.{k2}"),
+            a2,
+            format!("a number > 0 (with {k1}, the form is positive definite iff {k2} > 0 and {k2} + 2 {k1} > 0)"),
+        ));
+    }
+    if !(a2 + 2.0 * a1 > 0.0) {
+        return Err(InputError::new(
+            format!("{prefix}.{k1}"),
+            a1,
+            format!(
+                "{k1} > −{k2}/2 = {} (the form is positive definite iff {k2} + 2 {k1} > 0)",
+                -0.5 * a2
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The bytes a plane run holds, from the counts alone (before the mesh is built, for a
@@ -810,6 +846,25 @@ times = [1.0]
             .solve()
             .unwrap();
         assert_eq!(a.snapshots[0].u, b.snapshots[0].u);
+    }
+
+    #[test]
+    fn an_indefinite_form_names_the_key_as_written() {
+        for (from, to, key) in [
+            ("mu = 30.0\neta = 20.0", "mu = 0.0\neta = 0.0", "viscosity.eta = 0"),
+            ("mu = 30.0", "mu = -10.0", "viscosity.mu = -10"),
+        ] {
+            let err = PlaneScene::from_toml_str(&PAPER.replace(from, to), "x").unwrap_err();
+            assert!(err.to_string().contains(key), "{err}");
+        }
+    }
+
+    #[test]
+    fn times_ending_before_the_final_time_name_the_last_time() {
+        let text = PAPER.replace("steps = 10", "times = [0.0, 2.0]");
+        let err = PlaneScene::from_toml_str(&text, "x").unwrap_err().to_string();
+        assert!(err.contains("time.times[1] = 2"), "{err}");
+        assert!(err.contains("time.final_time = 1"), "{err}");
     }
 
     #[test]
