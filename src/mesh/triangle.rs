@@ -86,6 +86,41 @@ impl Grading {
     }
 }
 
+/// A triangle whose area is at most this multiple of h_max² (the mesh's longest edge, squared) is
+/// degenerate.
+pub const DEGENERATE_AREA: f64 = 1e-12;
+
+/// A rectangle's cells checked before any node is placed, so that an extreme `size` or
+/// `divisions` is named as written (`mesh.size`, mapped to the scene's key) rather than as the
+/// first degenerate triangle: the smallest cell's half area must exceed
+/// [`DEGENERATE_AREA`] × the largest cell's diagonal², the test every triangle passes later.
+fn check_cell_shape(
+    size: [f64; 2],
+    [nx, ny]: [usize; 2],
+    coord: impl Fn(usize, usize, usize) -> f64,
+) -> Result<(), InputError> {
+    let gaps = |n: usize, k: usize| {
+        let (first, last) = (coord(n, 1, k) - coord(n, 0, k), coord(n, n, k) - coord(n, n - 1, k));
+        (first.min(last), first.max(last))
+    };
+    let ((hx_min, hx_max), (hy_min, hy_max)) = (gaps(nx, 0), gaps(ny, 1));
+    let area = 0.5 * hx_min * hy_min;
+    let diagonal2 = hx_max * hx_max + hy_max * hy_max;
+    if area.is_finite() && diagonal2.is_finite() && area > DEGENERATE_AREA * diagonal2 {
+        return Ok(());
+    }
+    Err(InputError::new(
+        "mesh.size",
+        format!("[{}, {}] with divisions [{nx}, {ny}]", size[0], size[1]),
+        format!(
+            "cells of comparable sides: the smallest cell is {hx_min:.3e} × {hy_min:.3e} and the \
+             longest diagonal {:.3e}, so its triangles' area falls below {DEGENERATE_AREA:e} × \
+             diagonal² (change the size or the divisions so that the cells are less elongated)",
+            diagonal2.sqrt()
+        ),
+    ))
+}
+
 impl TriangleMesh {
     /// The rectangle (x0, x0 + width) × (y0, y0 + height) cut into n_x × n_y squares, each split
     /// into two triangles along `diagonal`; boundary edges tagged with their side.
@@ -138,6 +173,7 @@ impl TriangleMesh {
                 origin[k] + size[k] * grading[k].map(i as f64 / n as f64)
             }
         };
+        check_cell_shape(size, divisions, |n, i, k| coord(n, i, k))?;
         let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
         for j in 0..=ny {
             for i in 0..=nx {
@@ -254,7 +290,7 @@ impl TriangleMesh {
         let scale = self.h_max().max(f64::MIN_POSITIVE);
         for (t, tri) in self.triangles.iter().enumerate() {
             let area = signed_area(&self.nodes, tri);
-            if area.is_nan() || area <= 1e-12 * scale * scale {
+            if area.is_nan() || area <= DEGENERATE_AREA * scale * scale {
                 return Err(InputError::new(
                     format!("mesh.triangles[{t}]"),
                     format!("{tri:?} (area {area:e})"),
@@ -326,6 +362,16 @@ mod tests {
     //! Triangle meshes: the rectangle's counts, orientation, diagonal convention, boundary normals
     //! and tags; validation of user meshes.
     use super::*;
+
+    #[test]
+    fn an_extreme_rectangle_names_its_size_not_a_triangle() {
+        let err = TriangleMesh::rectangle([0.0, 0.0], [1.0, 1e12], [4, 4], Diagonal::Up)
+            .err()
+            .unwrap();
+        assert_eq!(err.field, "mesh.size");
+        assert!(err.value.contains("1000000000000"), "{err}");
+        assert!(TriangleMesh::rectangle([0.0, 0.0], [1.0, 1e4], [4, 4], Diagonal::Up).is_ok());
+    }
 
     #[test]
     fn rectangle_counts_and_total_area() {
