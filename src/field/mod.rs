@@ -79,7 +79,10 @@ impl Expression {
         // The grammar check passed; a refusal by the evaluator would be a form the grammar
         // admits and exmex does not, reported without exmex's internal words.
         let flat = Flat::parse(&syntax::normalized(text)).map_err(|_| {
-            refuse("a form the evaluator does not read: write it with explicit `*` and parentheses".into())
+            refuse(
+                "a form the evaluator does not read: write it with explicit `*` and parentheses"
+                    .into(),
+            )
         })?;
         let mut order = Vec::with_capacity(3);
         for name in flat.var_names() {

@@ -100,7 +100,10 @@ fn check_cell_shape(
     coord: impl Fn(usize, usize, usize) -> f64,
 ) -> Result<(), InputError> {
     let gaps = |n: usize, k: usize| {
-        let (first, last) = (coord(n, 1, k) - coord(n, 0, k), coord(n, n, k) - coord(n, n - 1, k));
+        let (first, last) = (
+            coord(n, 1, k) - coord(n, 0, k),
+            coord(n, n, k) - coord(n, n - 1, k),
+        );
         (first.min(last), first.max(last))
     };
     let ((hx_min, hx_max), (hy_min, hy_max)) = (gaps(nx, 0), gaps(ny, 1));

@@ -736,7 +736,10 @@ impl PlaneScene {
                     return Err(InputError::new(
                         format!("time.times[{}]", times.len() - 1),
                         grid.final_time(),
-                        format!("time.final_time = {} (the last time ends the run)", t.final_time),
+                        format!(
+                            "time.final_time = {} (the last time ends the run)",
+                            t.final_time
+                        ),
                     )
                     .into());
                 }
@@ -851,7 +854,11 @@ times = [1.0]
     #[test]
     fn an_indefinite_form_names_the_key_as_written() {
         for (from, to, key) in [
-            ("mu = 30.0\neta = 20.0", "mu = 0.0\neta = 0.0", "viscosity.eta = 0"),
+            (
+                "mu = 30.0\neta = 20.0",
+                "mu = 0.0\neta = 0.0",
+                "viscosity.eta = 0",
+            ),
             ("mu = 30.0", "mu = -10.0", "viscosity.mu = -10"),
         ] {
             let err = PlaneScene::from_toml_str(&PAPER.replace(from, to), "x").unwrap_err();
@@ -862,7 +869,9 @@ times = [1.0]
     #[test]
     fn times_ending_before_the_final_time_name_the_last_time() {
         let text = PAPER.replace("steps = 10", "times = [0.0, 2.0]");
-        let err = PlaneScene::from_toml_str(&text, "x").unwrap_err().to_string();
+        let err = PlaneScene::from_toml_str(&text, "x")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("time.times[1] = 2"), "{err}");
         assert!(err.contains("time.final_time = 1"), "{err}");
     }

@@ -452,9 +452,15 @@ mod tests {
     #[test]
     fn a_grading_past_round_off_names_mesh_grading_and_the_elements() {
         let text = PAPER.replace("elements = 100\n", "elements = 100\ngrading = 10.0\n");
-        let err = RodScene::from_toml_str(&text, "g.toml").err().unwrap().to_string();
+        let err = RodScene::from_toml_str(&text, "g.toml")
+            .err()
+            .unwrap()
+            .to_string();
         assert!(err.contains("mesh.grading = 10"), "{err}");
-        assert!(err.contains("100 elements") && err.contains("q < 7.83"), "{err}");
+        assert!(
+            err.contains("100 elements") && err.contains("q < 7.83"),
+            "{err}"
+        );
         let ok = PAPER.replace("elements = 100\n", "elements = 10\ngrading = 10.0\n");
         assert!(RodScene::from_toml_str(&ok, "g.toml").is_ok());
     }

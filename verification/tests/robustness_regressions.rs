@@ -521,3 +521,95 @@ fn a_stopped_rod_or_plane_run_writes_what_it_computed() {
         assert!(!text.contains("null"), "{example}: a null in {v}");
     }
 }
+
+// issue 32: expressions, messages in the user's words, Gmsh sections
+
+/// The example `name` with the text `from` replaced by `to` (for keys inside arrays of tables).
+fn replaced(name: &str, from: &str, to: &str) -> String {
+    let text = std::fs::read_to_string(root().join("examples/scenes").join(name)).unwrap();
+    assert!(text.contains(from), "{name} has no `{from}`");
+    text.replacen(from, to, 1)
+}
+
+#[test]
+fn scientific_notation_in_expressions_runs_and_a_slip_names_its_position() {
+    for load in ["\"1e-3*t + 10\"", "\"10 + 2.5e2*t\"", "\"10 + 1E-3*t\""] {
+        run_bounded(
+            "sci-notation",
+            mutated("rod_paper_p0_2.toml", &[("rod.load", load)]),
+            None,
+            120,
+        )
+        .unwrap_or_else(|e| panic!("{load}: {e}"));
+    }
+    let e = run_bounded(
+        "sci-slip",
+        mutated("rod_paper_p0_2.toml", &[("rod.load", "\"10 + 2e*t\"")]),
+        None,
+        120,
+    )
+    .expect_err("an exponent without digits");
+    assert!(e.contains("rod.load") && e.contains("position 6"), "{e}");
+    assert!(!e.contains("node") && !e.contains(" op"), "{e}");
+}
+
+#[test]
+fn inputs_that_pass_validation_but_fail_later_name_the_key_as_written() {
+    type Named<'a> = (&'a str, String, &'a [&'a str]);
+    let cases: [Named; 6] = [
+        (
+            "grading past round-off",
+            mutated(
+                "rod_paper_p0_2.toml",
+                &[("mesh.elements", "100"), ("mesh.grading", "10.0")],
+            ),
+            &["mesh.grading = 10", "100 elements"],
+        ),
+        (
+            "negative control parameter",
+            mutated(
+                "moving_thick_string.toml",
+                &[("oscillator.control_parameter", "-1.0")],
+            ),
+            &["oscillator.control_parameter = -1"],
+        ),
+        (
+            "an indefinite viscosity",
+            mutated(
+                "plane_paper_test_2d.toml",
+                &[("viscosity.mu", "0.0"), ("viscosity.eta", "0.0")],
+            ),
+            &["viscosity.eta = 0"],
+        ),
+        (
+            "a body 1e12 high",
+            mutated("dynamic_block_drop.toml", &[("body.size", "[0.4, 1e12]")]),
+            &["body.size"],
+        ),
+        (
+            "a foundation level far above the body",
+            mutated("dynamic_block_drop.toml", &[("contact.level", "1e3")]),
+            &["contact.level = 1000", "below the level"],
+        ),
+        (
+            "two rings overlapping at the start",
+            replaced(
+                "multibody_rings.toml",
+                "center = [1.1, 0.5]",
+                "center = [0.9, 0.5]",
+            ),
+            &["overlap"],
+        ),
+    ];
+    for (i, (what, scene, needles)) in cases.into_iter().enumerate() {
+        let e = run_bounded(&format!("named-{i}"), scene, None, 120)
+            .expect_err(&format!("{what}: an error"));
+        for n in needles {
+            assert!(e.contains(n), "{what}: the error does not name {n:?}: {e}");
+        }
+        assert!(
+            !e.contains("triangles[") && !e.contains("nodes["),
+            "{what}: {e}"
+        );
+    }
+}

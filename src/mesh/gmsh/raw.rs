@@ -130,7 +130,7 @@ pub fn node_count(code: u32) -> Option<usize> {
 /// The `$PhysicalNames` section of `text` (ASCII in every format: `n`, then `dim tag "name"` per
 /// line), or none when the file has no such section.
 pub fn physical_names(text: &[u8]) -> Result<Vec<(i32, i32, String)>, Located> {
-    let Some(start) = find(text, b"$PhysicalNames") else {
+    let Some(start) = section_start(text, b"$PhysicalNames") else {
         return Ok(Vec::new());
     };
     let body = &text[start + b"$PhysicalNames".len()..];
@@ -182,6 +182,33 @@ pub fn physical_names(text: &[u8]) -> Result<Vec<(i32, i32, String)>, Located> {
         ));
     }
     Ok(names)
+}
+
+/// The position of the top-level section `name` (e.g. `$Nodes`): the sections are walked from
+/// the start of the file, each skipped to its `$End…` line, so that text inside another section
+/// (a `$Nodes` quoted in `$Comments`, bytes of binary data) is never taken for a header.
+pub fn section_start(bytes: &[u8], name: &[u8]) -> Option<usize> {
+    let mut at = 0;
+    while at < bytes.len() {
+        let line_end = bytes[at..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(bytes.len(), |n| at + n);
+        let line = bytes[at..line_end].trim_ascii();
+        if line.first() == Some(&b'$') {
+            if line == name {
+                return Some(at + bytes[at..].iter().position(|&b| b == b'$').unwrap_or(0));
+            }
+            let mut end = b"\n$End".to_vec();
+            end.extend_from_slice(&line[1..]);
+            let body = &bytes[line_end.min(bytes.len())..];
+            let close = find(body, &end)?;
+            at = line_end + close + end.len();
+        } else {
+            at = line_end + 1;
+        }
+    }
+    None
 }
 
 /// The first position of `needle` in `hay`.

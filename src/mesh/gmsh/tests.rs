@@ -236,3 +236,30 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_duplicated_dense_node_tag_is_refused() {
+    // tags 1, 2, 2, 4, … : still dense (max − min + 1 = count), so mshio drops them; ours read them
+    let text = String::from_utf8(ASCII_41.to_vec()).unwrap();
+    let doubled = text.replacen("0 3 0 1\n3\n", "0 3 0 1\n2\n", 1);
+    assert_ne!(doubled, text);
+    let e = parse(doubled.as_bytes()).unwrap_err();
+    assert!(e.to_string().contains("defined twice"), "{e}");
+}
+
+#[test]
+fn a_nodes_header_quoted_in_comments_is_not_read() {
+    let text = String::from_utf8(ASCII_41.to_vec()).unwrap();
+    let decoy = text.replacen(
+        "$EndMeshFormat\n",
+        "$EndMeshFormat\n$Comments\n$Nodes\n1 0 1 1\n$EndComments\n",
+        1,
+    );
+    assert_ne!(decoy, text);
+    let m = parse(decoy.as_bytes()).unwrap();
+    assert_eq!(m.mesh.nodes().len(), 81);
+    assert_eq!(
+        raw::section_start(decoy.as_bytes(), b"$Nodes"),
+        decoy.find("$Nodes\n9 81")
+    );
+}

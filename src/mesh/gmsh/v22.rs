@@ -119,7 +119,7 @@ pub fn read(bytes: &[u8]) -> Result<RawMesh, Located> {
 
 /// The text between `start` and `end` (and its byte offset in the file).
 fn section<'a>(text: &'a str, start: &str, end: &str) -> Result<(usize, &'a str), Located> {
-    let Some(a) = text.find(start) else {
+    let Some(a) = super::raw::section_start(text.as_bytes(), start.as_bytes()) else {
         return Err((
             "file".into(),
             MeshProblem::Syntax(format!("no {start} section")),

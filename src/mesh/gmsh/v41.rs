@@ -12,7 +12,9 @@ use std::collections::HashMap;
 
 use mshio::mshfile::MshFile;
 
-use super::raw::{find, physical_names, syntax, Located, RawElement, RawMesh, RawNode, MAX_COUNT};
+use super::raw::{
+    physical_names, section_start, syntax, Located, RawElement, RawMesh, RawNode, MAX_COUNT,
+};
 use crate::error::MeshProblem;
 
 /// Reads a 4.1 file: ASCII when `binary` is `None`, else binary with `Some(little_endian)` as its
@@ -47,30 +49,26 @@ pub fn read(bytes: &[u8], binary: Option<bool>) -> Result<RawMesh, Located> {
     }
     let mut nodes = Vec::new();
     if let Some(section) = &msh.data.nodes {
-        let mut k = 0u64;
-        for block in &section.node_blocks {
-            let mut tags = vec![0u64; block.nodes.len()];
-            match &block.node_tags {
-                Some(map) => {
-                    for (&tag, &i) in map {
-                        if let Some(t) = tags.get_mut(i) {
-                            *t = tag;
-                        }
-                    }
-                }
-                None => {
-                    for t in tags.iter_mut() {
-                        *t = section.min_node_tag.saturating_add(k);
-                        k += 1;
-                    }
-                }
-            }
-            for (n, tag) in block.nodes.iter().zip(tags) {
-                nodes.push(RawNode {
-                    tag,
-                    xyz: [n.x, n.y, n.z],
-                });
-            }
+        // mshio keeps a block's tags only when they are sparse and then in a map, so a
+        // duplicated or out-of-order tag would vanish; the tags are read from the file instead.
+        let tags = node_tags(bytes, binary)?;
+        let coordinates = section.node_blocks.iter().flat_map(|b| b.nodes.iter());
+        let count = section
+            .node_blocks
+            .iter()
+            .map(|b| b.nodes.len())
+            .sum::<usize>();
+        if count != tags.len() {
+            return Err(syntax(
+                section_start(bytes, b"$Nodes").unwrap_or(0),
+                format!("$Nodes: {} node tags for {count} coordinates", tags.len()),
+            ));
+        }
+        for (n, tag) in coordinates.zip(tags) {
+            nodes.push(RawNode {
+                tag,
+                xyz: [n.x, n.y, n.z],
+            });
         }
     }
     let mut elements = Vec::new();
@@ -96,6 +94,94 @@ pub fn read(bytes: &[u8], binary: Option<bool>) -> Result<RawMesh, Located> {
     })
 }
 
+/// The node tags of `$Nodes` in file order (format 4.1: per entity block `dim tag parametric n`,
+/// then the n tags, then the n coordinate records of 3 + parametric·dim values), read after
+/// [`check_counts`] has bounded the counts.
+fn node_tags(bytes: &[u8], binary: Option<bool>) -> Result<Vec<u64>, Located> {
+    let at = section_start(bytes, b"$Nodes").unwrap_or(0);
+    let mut rest = &bytes[at + b"$Nodes".len()..];
+    rest = rest.strip_prefix(b"\r").unwrap_or(rest);
+    rest = rest.strip_prefix(b"\n").unwrap_or(rest);
+    let bad = |what: &str| syntax(at, format!("$Nodes: {what}"));
+    let mut reader = Reader { rest, binary };
+    let blocks = reader.size().ok_or_else(|| bad("truncated header"))?;
+    let count = reader.size().ok_or_else(|| bad("truncated header"))?;
+    reader.size();
+    reader.size();
+    let mut tags = Vec::with_capacity(count.min(MAX_COUNT) as usize);
+    for _ in 0..blocks {
+        let (dim, _, parametric) = (reader.int(), reader.int(), reader.int());
+        let (Some(dim), Some(parametric), Some(n)) = (dim, parametric, reader.size()) else {
+            return Err(bad("truncated entity block"));
+        };
+        if n > count.saturating_sub(tags.len() as u64) {
+            return Err(bad(
+                "entity blocks hold more nodes than the header announces",
+            ));
+        }
+        for _ in 0..n {
+            tags.push(reader.size().ok_or_else(|| bad("truncated node tags"))?);
+        }
+        let values = 3 + if parametric != 0 {
+            dim.max(0) as u64
+        } else {
+            0
+        };
+        for _ in 0..n * values {
+            reader.real().ok_or_else(|| bad("truncated coordinates"))?;
+        }
+    }
+    Ok(tags)
+}
+
+/// Sequential reading of ASCII words or binary values.
+struct Reader<'a> {
+    rest: &'a [u8],
+    binary: Option<bool>,
+}
+
+impl Reader<'_> {
+    fn word(&mut self) -> Option<&str> {
+        let start = self.rest.iter().position(|b| !b.is_ascii_whitespace())?;
+        let len = self.rest[start..]
+            .iter()
+            .position(|b| b.is_ascii_whitespace())
+            .unwrap_or(self.rest.len() - start);
+        let word = std::str::from_utf8(&self.rest[start..start + len]).ok();
+        self.rest = &self.rest[start + len..];
+        word
+    }
+
+    fn bytes<const N: usize>(&mut self) -> Option<[u8; N]> {
+        let (head, tail) = self.rest.split_first_chunk::<N>()?;
+        self.rest = tail;
+        Some(*head)
+    }
+
+    fn size(&mut self) -> Option<u64> {
+        match self.binary {
+            Some(true) => self.bytes::<8>().map(u64::from_le_bytes),
+            Some(false) => self.bytes::<8>().map(u64::from_be_bytes),
+            None => self.word()?.parse().ok(),
+        }
+    }
+
+    fn int(&mut self) -> Option<i32> {
+        match self.binary {
+            Some(true) => self.bytes::<4>().map(i32::from_le_bytes),
+            Some(false) => self.bytes::<4>().map(i32::from_be_bytes),
+            None => self.word()?.parse().ok(),
+        }
+    }
+
+    fn real(&mut self) -> Option<f64> {
+        match self.binary {
+            Some(_) => self.bytes::<8>().map(|_| 0.0),
+            None => self.word()?.parse().ok(),
+        }
+    }
+}
+
 /// Checks the header of section `name` (`numEntityBlocks numItems minTag maxTag`): 1 ≤ numItems
 /// ≤ [`MAX_COUNT`], numEntityBlocks ≤ numItems, minTag ≥ 1, and numItems × `min_bytes` (the
 /// fewest bytes one item takes) no more than the bytes after the header.
@@ -105,7 +191,7 @@ fn check_counts(
     binary: Option<bool>,
     min_bytes: u64,
 ) -> Result<(), Located> {
-    let Some(at) = find(bytes, name.as_bytes()) else {
+    let Some(at) = section_start(bytes, name.as_bytes()) else {
         return Ok(());
     };
     let mut rest = &bytes[at + name.len()..];

@@ -325,6 +325,22 @@ mu0 = 0.3
 "#;
 
     #[test]
+    fn a_level_inside_the_body_names_contact_level_and_the_depth() {
+        let text = RING.replace("level = 0.0", "level = 1e3");
+        let err = DynamicScene::from_toml_str(&text, "ring")
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("contact.level = 1000"), "{err}");
+        assert!(err.contains("below the level"), "{err}");
+        // inside the layer of limited penetration is admitted; one layer deeper is not
+        let inside = RING.replace("level = 0.0", "level = 0.0024");
+        assert!(DynamicScene::from_toml_str(&inside, "ring").is_ok());
+        let deeper = RING.replace("level = 0.0", "level = 0.0026");
+        assert!(DynamicScene::from_toml_str(&deeper, "ring").is_err());
+    }
+
+    #[test]
     fn ring_scene_parses_and_runs() {
         let scene = DynamicScene::from_toml_str(RING, "ring").expect("valid scene");
         let sol = scene.solve().expect("runs");

@@ -8,7 +8,7 @@ use crate::field::Field;
 use crate::material::hyperelastic::Hyperelastic2d;
 use crate::mesh::gmsh::GmshMesh;
 use crate::mesh::triangle::TriangleMesh;
-use crate::model::dynamic::contact_model::ContactModel;
+use crate::model::dynamic::contact_model::{ContactModel, NormalTreatment};
 use crate::model::dynamic::plane_body::{BodyRegion, PlaneBody, PlaneBodyData};
 use crate::model::quasistatic::plane::BoundarySelector;
 use crate::scene::boundary::{
@@ -166,5 +166,55 @@ pub(super) fn plane(
         body.from_nodal(&interleave(&u0f)),
         body.from_nodal(&interleave(&v0f)),
     );
+    if let Some(c) = &contact {
+        starts_outside(c, &nodes, &u0, file.contact.as_ref().and_then(|c| c.level))?;
+    }
     Ok((SceneBody::Plane(body), contact, u0, v0))
+}
+
+/// The body at t = 0 (nodes moved by `initial.displacement`) may not start inside the foundation
+/// {y ≤ level} deeper than the treatment admits: the layer depth g of `limited_penetration`, else
+/// the round-off of the gap, 8 ε (|level| + max |y|) + 1e-12 × the body's height (the tolerance of
+/// the multibody overlap check). A deeper start is a careless level or initial state; the solver
+/// would meet it as a singular Jacobian or a force beyond the range of doubles at the first step.
+fn starts_outside(
+    c: &ContactModel,
+    nodes: &[[f64; 2]],
+    u0: &[f64],
+    level: Option<f64>,
+) -> Result<(), InputError> {
+    let level = level.unwrap_or(0.0);
+    let (lo, hi) = nodes
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p[1]), hi.max(p[1]))
+        });
+    let scale = level.abs().max(lo.abs()).max(hi.abs());
+    let allowed = match c.treatment {
+        NormalTreatment::LimitedPenetration { depth, .. } => depth,
+        _ => 8.0 * f64::EPSILON * scale + 1e-12 * (hi - lo),
+    };
+    let deepest = c
+        .nodes
+        .iter()
+        .map(|n| {
+            (
+                n,
+                n.offset + n.sign * u0.get(n.normal_dof).copied().unwrap_or(0.0),
+            )
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1));
+    match deepest {
+        Some((n, p)) if p > allowed || p.is_nan() => Err(InputError::new(
+            "contact.level",
+            level,
+            format!(
+                "a foundation {{y ≤ level}} the body does not start inside: node {} at y = {} \
+                 (with initial.displacement) starts {p:.3e} below the level, more than the {:.1e} \
+                 the treatment admits (lower contact.level or move the body)",
+                n.node, nodes[n.node][1], allowed
+            ),
+        )),
+        _ => Ok(()),
+    }
 }
