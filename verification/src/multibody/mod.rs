@@ -11,6 +11,7 @@
 //! | `multibody_impact` | [`cases::impact`] | two rings in oblique impact: EM's momenta and energy at round-off, the midpoint rule's energy error and blow-up, GCI of rebound and duration, work–precision |
 //! | `multibody_extremes` | [`cases::extremes`] | steps of several contact durations, speeds over three decades, penalty → ∞ against the multipliers (compliant and conserving penalties) |
 //! | `multibody_sliding` | [`cases::sliding`] | grazing impact on the foundation over decades of v_n/v_t, and a block sliding off the master's free end (the release, loaded and unloaded) |
+//! | `multibody_envelope` | [`cases::envelope`] | the range's edges on the head-on bars: speeds, meshes, cells, passes, Newmark, an overlapping start; every point past the range a typed error or a stated warning |
 //!
 //! [`study`] holds what every kind shares: building bodies from a case's numbers, running a
 //! problem with its step records, the audit's gates and plots; [`errors`] the measured
@@ -50,6 +51,7 @@ impl Family for Multibody {
             "multibody_impact",
             "multibody_extremes",
             "multibody_sliding",
+            "multibody_envelope",
         ]
     }
 
@@ -61,6 +63,7 @@ impl Family for Multibody {
             "multibody_impact" => cases::impact::check(case),
             "multibody_extremes" => cases::extremes::check(case),
             "multibody_sliding" => cases::sliding::check(case),
+            "multibody_envelope" => cases::envelope::check(case),
             _ => Err(case.unknown_kind(self.kinds())),
         }
     }
@@ -73,6 +76,7 @@ impl Family for Multibody {
             "multibody_impact" => cases::impact::run(case, ctx, report),
             "multibody_extremes" => cases::extremes::run(case, ctx, report),
             "multibody_sliding" => cases::sliding::run(case, ctx, report),
+            "multibody_envelope" => cases::envelope::run(case, ctx, report),
             _ => Err(case.unknown_kind(self.kinds()).to_string()),
         }
     }

@@ -1,6 +1,7 @@
 //! The case kinds of the multibody family, one file (or folder) each.
 
 pub mod bars;
+pub mod envelope;
 pub mod extremes;
 pub mod friction;
 pub mod impact;
