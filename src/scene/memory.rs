@@ -93,6 +93,14 @@ fn against(
     ))
 }
 
+/// The number of distinct values among `times` (a time written twice is recorded once).
+pub fn distinct_times(times: &[f64]) -> usize {
+    let mut t = times.to_vec();
+    t.sort_by(f64::total_cmp);
+    t.dedup();
+    t.len()
+}
+
 /// A byte count for people.
 fn human(b: f64) -> String {
     if !b.is_finite() {

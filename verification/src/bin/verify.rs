@@ -305,6 +305,10 @@ fn main() -> ExitCode {
                 cost,
                 rounds: *rounds,
             };
+            if let Err(e) = request.validate() {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
             let base = match base.as_deref().map(|b| {
                 let v: Vec<Option<usize>> = b.split(',').map(|x| x.trim().parse().ok()).collect();
                 match v.as_slice() {
