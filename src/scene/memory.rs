@@ -85,7 +85,11 @@ impl RunSize {
 
     /// The key of the largest term of `terms` and its value as written.
     fn key_of(&self, terms: &[f64; 3]) -> (String, String) {
-        let parts = [terms[0], self.outputs * terms[1], (self.steps + 1.0) * terms[2]];
+        let parts = [
+            terms[0],
+            self.outputs * terms[1],
+            (self.steps + 1.0) * terms[2],
+        ];
         let largest = (0..3).fold(0, |b, i| if parts[i] > parts[b] { i } else { b });
         match largest {
             0 => self.mesh_key.clone(),
@@ -278,9 +282,16 @@ mod tests {
         };
         let (_, disk) = run.totals();
         assert_eq!(disk, 1e4 + 2e9 + 1.01e5);
-        let e = against_disk("output.times", "(20000 distinct times)", disk, "d", 1 << 30, "t")
-            .unwrap_err()
-            .to_string();
+        let e = against_disk(
+            "output.times",
+            "(20000 distinct times)",
+            disk,
+            "d",
+            1 << 30,
+            "t",
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("output.times") && e.contains("1.0 GiB"), "{e}");
         assert_eq!(run.key_of(&run.disk).0, "output.times");
         assert_eq!(run.key_of(&run.memory).0, "output.times");

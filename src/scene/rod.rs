@@ -362,7 +362,11 @@ pub fn require_rod_memory(
     // the steps' key as written (a planner's pilot names --base, not time.steps)
     let named = |e: crate::error::InputError| {
         if e.field == "time.steps" {
-            crate::error::InputError { field: time_key.to_string(), value: time.clone(), ..e }
+            crate::error::InputError {
+                field: time_key.to_string(),
+                value: time.clone(),
+                ..e
+            }
         } else {
             e
         }

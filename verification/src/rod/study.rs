@@ -224,8 +224,14 @@ impl RodStudy {
             0.0,
             0.0,
             [
-                ("mesh.elements (M of a run; the planner's --base M0)", elements.to_string()),
-                ("time.steps (N of a run; the planner's --base N0)", steps.to_string()),
+                (
+                    "mesh.elements (M of a run; the planner's --base M0)",
+                    elements.to_string(),
+                ),
+                (
+                    "time.steps (N of a run; the planner's --base N0)",
+                    steps.to_string(),
+                ),
             ],
         )?;
         RodSolver::new(
