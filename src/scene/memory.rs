@@ -93,9 +93,10 @@ impl RunSize {
         let largest = (0..3).fold(0, |b, i| if parts[i] > parts[b] { i } else { b });
         match largest {
             0 => self.mesh_key.clone(),
+            // a snapshot's size is the mesh's: both keys drive this term
             1 => (
-                "output.times".into(),
-                format!("({} distinct times)", self.outputs),
+                format!("output.times × {}", self.mesh_key.0),
+                format!("({} distinct times) × {}", self.outputs, self.mesh_key.1),
             ),
             _ => ("time.steps".into(), format!("{}", self.steps)),
         }
@@ -293,8 +294,8 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("output.times") && e.contains("1.0 GiB"), "{e}");
-        assert_eq!(run.key_of(&run.disk).0, "output.times");
-        assert_eq!(run.key_of(&run.memory).0, "output.times");
+        assert_eq!(run.key_of(&run.disk).0, "output.times × body.divisions");
+        assert_eq!(run.key_of(&run.memory).0, "output.times × body.divisions");
         assert_eq!(run.key_of(&[1e9, 1.0, 1.0]).0, "body.divisions");
     }
 
