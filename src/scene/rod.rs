@@ -296,9 +296,8 @@ impl RodScene {
     }
 }
 
-/// The bytes a rod run holds, from the counts alone (before the mesh is built): per node about 16
-/// vectors of the solver plus u, w, v of each snapshot; per step the contact-end histories (6
-/// values) and the probes.
+/// The bytes a rod run holds, from the counts alone (before the mesh is built): see
+/// [`require_rod_memory`]; `snapshots` counts the distinct output times.
 fn rod_memory(file: &RodSceneFile) -> Result<(), Error> {
     let nodes = match (&file.mesh.nodes, file.mesh.elements) {
         (Some(n), _) => n.len() as f64,
@@ -310,24 +309,70 @@ fn rod_memory(file: &RodSceneFile) -> Result<(), Error> {
         (None, Some(n)) => n as f64,
         (None, None) => return Ok(()),
     };
-    let snapshots = file.output.times.len() as f64;
-    let probes = file.output.probes.len() as f64;
-    let per_nodes = 8.0 * nodes * (16.0 + 3.0 * snapshots);
-    let per_steps = 8.0 * (steps + 1.0) * (6.0 + probes);
-    let how = "8 B × [(M + 1)(16 + 3 × snapshots) + (N + 1)(6 + probes)]";
-    if per_nodes >= per_steps {
-        let written = match (&file.mesh.nodes, file.mesh.elements) {
-            (Some(n), _) => format!("({} nodes)", n.len()),
-            (None, m) => m.unwrap_or_default().to_string(),
-        };
-        crate::scene::memory::require_memory("mesh.elements", written, per_nodes + per_steps, how)?;
-    } else {
-        let written = match (&file.time.times, file.time.steps) {
-            (Some(t), _) => format!("({} times)", t.len()),
-            (None, n) => n.unwrap_or_default().to_string(),
-        };
-        crate::scene::memory::require_memory("time.steps", written, per_nodes + per_steps, how)?;
-    }
+    let mesh = match (&file.mesh.nodes, file.mesh.elements) {
+        (Some(n), _) => format!("({} nodes)", n.len()),
+        (None, m) => m.unwrap_or_default().to_string(),
+    };
+    let time = match (&file.time.times, file.time.steps) {
+        (Some(t), _) => format!("({} times)", t.len()),
+        (None, n) => n.unwrap_or_default().to_string(),
+    };
+    let snapshots = crate::scene::memory::distinct_times(&file.output.times) as f64;
+    require_rod_memory(
+        nodes,
+        steps,
+        snapshots,
+        file.output.probes.len() as f64,
+        [("mesh.elements", mesh), ("time.steps", time)],
+    )
+}
+
+/// The bytes a rod run of `nodes` nodes and `steps` steps holds and writes, against the memory
+/// and disk limits ([`crate::scene::memory::RunSize`]): per node about 16 vectors of the solver;
+/// per snapshot u, w, v at the nodes; per step the contact-end histories (6 values) and the
+/// probes — each recorded number as a double and as text. `keys` name the mesh count and the
+/// step count as the user wrote them (a scene's keys, or the planner's `--base`); the one whose
+/// term dominates is named.
+pub fn require_rod_memory(
+    nodes: f64,
+    steps: f64,
+    snapshots: f64,
+    probes: f64,
+    keys: [(&str, String); 2],
+) -> Result<(), Error> {
+    use crate::scene::memory::{RunSize, TEXT_BYTES};
+    let [(mesh_key, mesh), (time_key, time)] = keys;
+    let run = RunSize {
+        mesh_key: (mesh_key.to_string(), mesh),
+        outputs: snapshots,
+        steps,
+        memory: [
+            8.0 * 16.0 * nodes,
+            3.0 * nodes * (8.0 + TEXT_BYTES),
+            (6.0 + probes) * (8.0 + TEXT_BYTES),
+        ],
+        disk: [
+            TEXT_BYTES * nodes,
+            3.0 * nodes * TEXT_BYTES,
+            (6.0 + probes) * TEXT_BYTES,
+        ],
+        memory_how: "16 MiB + 8 B × 16 (M + 1) + 48 B × [3 (M + 1) × snapshots + (N + 1)(6 + \
+                     probes)]",
+        disk_how: "40 B a number: 3 (M + 1) × snapshots + (N + 1)(6 + probes)",
+    };
+    // the steps' key as written (a planner's pilot names --base, not time.steps)
+    let named = |e: crate::error::InputError| {
+        if e.field == "time.steps" {
+            crate::error::InputError {
+                field: time_key.to_string(),
+                value: time.clone(),
+                ..e
+            }
+        } else {
+            e
+        }
+    };
+    run.require().map_err(named)?;
     Ok(())
 }
 

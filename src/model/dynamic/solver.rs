@@ -343,13 +343,15 @@ impl DynamicSolver {
             rec.max_penetration = 0.0;
         }
         audit.records.push(rec);
-        let mut snapshots = Vec::new();
+        let mut snapshots: Vec<(f64, Vec<f64>)> = Vec::new();
         let mut next_snapshot = 0;
         let mut snap_times = self.params.snapshot_times.clone();
         snap_times.sort_by(f64::total_cmp);
         let mut take_snapshots = |step: usize, t: f64, u: &[f64], next: &mut usize| {
             while *next < snap_times.len() && snap_times[*next] <= t + 0.5 * k {
-                if snap_times[*next] > t - 0.5 * k || step == 0 {
+                // a time written twice (or two times of one step) is recorded once
+                let fresh = snapshots.last().is_none_or(|(last, _)| *last != t);
+                if (snap_times[*next] > t - 0.5 * k || step == 0) && fresh {
                     snapshots.push((t, u.to_vec()));
                 }
                 *next += 1;

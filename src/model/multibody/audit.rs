@@ -36,6 +36,11 @@ pub const ROUND_OFF_CONSTANT: f64 = 2.0;
 /// foundation, whether it switched segment (else it activated), the work λ_N (g₁ − g₀)).
 pub type PositiveWork = (usize, usize, Option<usize>, bool, f64);
 
+/// Whether `x` is NaN or ±∞ (a value left out of a serialized record).
+fn not_finite(x: &f64) -> bool {
+    !x.is_finite()
+}
+
 /// One step's audit (record 0: the initial state).
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct MultibodyRecord {
@@ -90,7 +95,9 @@ pub struct MultibodyRecord {
     /// Σ λ_N and Σ λ_T at t_{n+1}.
     pub normal_force: f64,
     pub friction_force: f64,
-    /// The smallest gap of a candidate at t_{n+1} (negative: penetration).
+    /// The smallest gap of a candidate at t_{n+1} (negative: penetration); left out of the
+    /// serialized record when not finite (no candidate: +∞).
+    #[serde(skip_serializing_if = "not_finite")]
     pub min_gap: f64,
     pub newton_iterations: usize,
     /// Σ max(0, λ_N (g₁ − g₀)) over the multiplier constraints that activated or switched

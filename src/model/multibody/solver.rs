@@ -550,14 +550,16 @@ impl MultibodySolver {
                 InputError::new("initial", value, format!("a state with finite {q}")).into(),
             );
         }
-        let mut snapshots = Vec::new();
+        let mut snapshots: Vec<MultibodySnapshot> = Vec::new();
         let mut times = self.params.snapshot_times.clone();
         times.sort_by(f64::total_cmp);
         let mut next_snapshot = 0;
         let mut take =
             |step: usize, t: f64, u: &[f64], v: &[f64], c: &[ContactState], next: &mut usize| {
                 while *next < times.len() && times[*next] <= t + 0.5 * k {
-                    if times[*next] > t - 0.5 * k || step == 0 {
+                    // a time written twice (or two times of one step) is recorded once
+                    let fresh = snapshots.last().is_none_or(|s| s.step != step);
+                    if (times[*next] > t - 0.5 * k || step == 0) && fresh {
                         snapshots.push(MultibodySnapshot {
                             step,
                             time: t,

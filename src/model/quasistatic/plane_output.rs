@@ -132,14 +132,19 @@ impl PlaneRecorder {
         request: &PlaneOutputRequest,
     ) -> Result<Self, InputError> {
         let mut steps = Vec::new();
+        let mut seen = std::collections::BTreeSet::new();
         for (i, &t) in request.snapshot_times.iter().enumerate() {
-            steps.push(grid.index_of(t).ok_or_else(|| {
+            let n = grid.index_of(t).ok_or_else(|| {
                 InputError::new(
                     format!("output.times[{i}]"),
                     t,
                     format!("a time of the grid (T = {})", grid.final_time()),
                 )
-            })?);
+            })?;
+            // a time written twice (or two times of one step) is recorded once
+            if seen.insert(n) {
+                steps.push(n);
+            }
         }
         let problem = problem.clone();
         let dofs = dofs.clone();

@@ -86,6 +86,7 @@ impl RodRecorder {
         request: &RodOutputRequest,
     ) -> Result<Self, InputError> {
         let mut snapshot_steps = Vec::with_capacity(request.snapshot_times.len());
+        let mut seen = std::collections::BTreeSet::new();
         for (i, &t) in request.snapshot_times.iter().enumerate() {
             let n = grid.index_of(t).ok_or_else(|| {
                 InputError::new(
@@ -97,7 +98,10 @@ impl RodRecorder {
                     ),
                 )
             })?;
-            snapshot_steps.push(n);
+            // a time written twice (or two times of one step) is recorded once
+            if seen.insert(n) {
+                snapshot_steps.push(n);
+            }
         }
         let length = mesh.length();
         for (i, &x) in request.probes.iter().enumerate() {

@@ -240,9 +240,8 @@ impl DynamicScene {
     }
 }
 
-/// The bytes a dynamic run holds, from the counts alone (before the mesh is built): per dof the
-/// operators and factor (fill ~ n log₂ n) and the work vectors; per output time u and v; per step
-/// the audit's row (about 16 values). The node count by shape: bar M + 1, rectangle
+/// The bytes a dynamic run holds and writes, from the counts alone (before the mesh is built):
+/// see [`require_run_memory`]. The node count by shape: bar M + 1, rectangle
 /// (n_x + 1)(n_y + 1), disk at most 4 (rings + 1)², annulus (radial + 1) × around; a Gmsh body
 /// the node count of its file, once read.
 fn dynamic_memory(file: &DynamicSceneFile) -> Result<(), Error> {
@@ -264,7 +263,12 @@ fn dynamic_memory(file: &DynamicSceneFile) -> Result<(), Error> {
 }
 
 /// The estimate of [`dynamic_memory`] for a body of `nodes` nodes in `dim` dimensions, against
-/// the memory limit; `field` and `written` name the key that sets the size.
+/// the memory and disk limits ([`crate::scene::memory::RunSize`]); `field` and `written` name the
+/// key that sets the size. Per mesh the operators and factor, 8 B × dofs (70 + 4 log₂ dofs); per
+/// distinct output time 5 copies of a state (the solver's snapshot, the recorder's displacement,
+/// velocity and forces, the nodal copy written) and the displacement's text in solution.json,
+/// with `vtk` 6 more vectors and their text in the frame; per step the audit record (16 values)
+/// and its text in energy_audit.json and the plots (30 numbers measured).
 fn require_run_memory(
     file: &DynamicSceneFile,
     field: &str,
@@ -272,17 +276,28 @@ fn require_run_memory(
     nodes: f64,
     dim: f64,
 ) -> Result<(), Error> {
+    use crate::scene::memory::{distinct_times, RunSize, TEXT_BYTES};
     let dofs = dim * nodes;
-    let per_mesh = 8.0 * dofs * (70.0 + 4.0 * dofs.max(2.0).log2())
-        + 8.0 * 2.0 * dofs * file.output.times.len() as f64;
-    let per_steps = 8.0 * 16.0 * (file.time.steps as f64 + 1.0);
-    let how = "8 B × [dofs (70 + 4 log₂ dofs) + 2 dofs × output times + 16 (N + 1)]";
-    let total = per_mesh + per_steps;
-    if per_mesh >= per_steps {
-        crate::scene::memory::require_memory(field, written, total, how)?;
-    } else {
-        crate::scene::memory::require_memory("time.steps", file.time.steps, total, how)?;
-    }
+    let vtk = if file.output.vtk { 1.0 } else { 0.0 };
+    let run = RunSize {
+        mesh_key: (field.to_string(), written),
+        outputs: distinct_times(&file.output.times) as f64,
+        steps: file.time.steps as f64,
+        memory: [
+            8.0 * dofs * (70.0 + 4.0 * dofs.max(2.0).log2()),
+            dofs * (8.0 * 5.0 + TEXT_BYTES + vtk * 6.0 * (8.0 + TEXT_BYTES)),
+            8.0 * 16.0 + 30.0 * TEXT_BYTES,
+        ],
+        disk: [
+            TEXT_BYTES * 3.0 * dofs,
+            dofs * TEXT_BYTES * (1.0 + 6.0 * vtk),
+            30.0 * TEXT_BYTES,
+        ],
+        memory_how: "16 MiB + 8 B × dofs (70 + 4 log₂ dofs) + output times × dofs × \
+                     (5 × 8 B + 40 B of text; VTK: 6 × 48 B) + (N + 1) × (16 × 8 B + 30 × 40 B)",
+        disk_how: "40 B a number: output times × dofs (1, VTK 7) + (N + 1) × 30",
+    };
+    run.require()?;
     Ok(())
 }
 

@@ -346,12 +346,19 @@ impl RotatingPlateScene {
         } else {
             ("sweep[].points", format!("{sweep_points}"))
         };
+        // each result is written as text too (about 40 B a number, 5 times its doubles)
         crate::scene::memory::require_memory(
             field,
+            &written,
+            crate::scene::memory::PROGRAM_BYTES + operators + 6.0 * results,
+            "16 MiB + 13 R² + 6 n² doubles of operators, 16 (2n)² per worker, 6 × (48 B × 2n \
+             per sweep point + 256 B per map point) with the results' text",
+        )?;
+        crate::scene::memory::require_disk(
+            field,
             written,
-            operators + results,
-            "13 R² + 6 n² doubles of operators, 16 (2n)² per worker, 48 B × 2n per sweep point, \
-             256 B per map point",
+            5.0 * results,
+            "5 × (48 B × 2n per sweep point + 256 B per map point): the results as text",
         )?;
         Ok(())
     }

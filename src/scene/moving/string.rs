@@ -316,11 +316,20 @@ impl MovingStringScene {
         } else {
             ("sweep[].points", format!("{sweep_points}"))
         };
+        let results = estimate - 16.0 * (2.0 * coords).powi(2) * 8.0 * 4.0;
+        // each result is written as text too (about 40 B a number, 5 times its doubles)
         crate::scene::memory::require_memory(
             field,
+            &written,
+            crate::scene::memory::PROGRAM_BYTES + estimate + 5.0 * results,
+            "16 MiB + 6 × (48 B × 2(N + 2) per sweep point + 256 B per map point) with the \
+             results' text + dense eigen workspaces",
+        )?;
+        crate::scene::memory::require_disk(
+            field,
             written,
-            estimate,
-            "48 B × 2(N + 2) per sweep point + 256 B per map point + dense eigen workspaces",
+            5.0 * results,
+            "5 × (48 B × 2(N + 2) per sweep point + 256 B per map point): the results as text",
         )?;
         Ok(Self {
             title: f.title.clone(),

@@ -2,20 +2,20 @@
 //! before anything is allocated ([`crate::scene::memory`]).
 //!
 //! Per dof of the system (2 per node, all bodies) the operators, the step's sparse LU factor
-//! (fill ~ n log₂ n) and the work vectors, as for a dynamic body; per output time the
-//! displacement and velocity and at most one contact state (12 values) per node; per step the
-//! audit's record (about 40 values) and, in `verify scene`, each body's centre-of-mass velocity.
+//! (fill ~ n log₂ n) and the work vectors, as for a dynamic body; per output time and per step
+//! what is recorded and its text ([`require_run_memory`]); the files against the disk limit.
 
 use crate::error::InputError;
-use crate::scene::memory::require_memory;
+use crate::scene::memory::{distinct_times, RunSize, TEXT_BYTES};
 use crate::scene::multibody::format::MultibodySceneFile;
 
-const HOW: &str = "8 B × [dofs (70 + 4 log₂ dofs) + output times (2 dofs + 12 nodes) + \
-                   (40 + 2 bodies) (N + 1)]";
-
-/// The estimate for `nodes[b]` nodes of body b, against the limit: the key named is the one that
-/// sets the largest body's size (`fields[b]` = (key, value as written)), or `time.steps` when the
-/// steps' records outweigh the meshes.
+/// The estimate for `nodes[b]` nodes of body b, against the memory and disk limits: the mesh
+/// key named is the one that sets the largest body's size (`fields[b]` = (key, value as
+/// written)). Per mesh the operators, 8 B × dofs (70 + 4 log₂ dofs); per distinct output time
+/// two copies (the solver's and the recorder's) of u, v and a contact state (12 values) per node
+/// and the text of u and v in solution.json (VTK: 6 vectors more); per step the record and the
+/// history row (40 + 2 bodies values) and their text (60 + 4 bodies numbers measured in
+/// solution.json, history.csv and the plots).
 pub(super) fn require_run_memory(
     file: &MultibodySceneFile,
     nodes: &[f64],
@@ -23,18 +23,33 @@ pub(super) fn require_run_memory(
 ) -> Result<(), InputError> {
     let total_nodes: f64 = nodes.iter().sum();
     let dofs = 2.0 * total_nodes;
-    let outputs = file.output.times.len() as f64;
-    let per_mesh = 8.0 * dofs * (70.0 + 4.0 * dofs.max(2.0).log2())
-        + 8.0 * outputs * (2.0 * dofs + 12.0 * total_nodes);
-    let per_steps = 8.0 * (40.0 + 2.0 * nodes.len() as f64) * (file.time.steps as f64 + 1.0);
-    let total = per_mesh + per_steps;
+    let bodies = nodes.len() as f64;
+    let vtk = if file.output.vtk { 1.0 } else { 0.0 };
     let largest = nodes
         .iter()
         .enumerate()
         .max_by(|a, b| a.1.total_cmp(b.1))
-        .map(|(b, _)| b);
-    match largest {
-        Some(b) if per_mesh >= per_steps => require_memory(&fields[b].0, &fields[b].1, total, HOW),
-        _ => require_memory("time.steps", file.time.steps, total, HOW),
-    }
+        .map_or(0, |(b, _)| b);
+    let run = RunSize {
+        mesh_key: fields.get(largest).cloned().unwrap_or_default(),
+        outputs: distinct_times(&file.output.times) as f64,
+        steps: file.time.steps as f64,
+        memory: [
+            8.0 * dofs * (70.0 + 4.0 * dofs.max(2.0).log2()),
+            8.0 * 2.0 * (2.0 * dofs + 12.0 * total_nodes)
+                + 2.0 * dofs * TEXT_BYTES
+                + vtk * 6.0 * dofs * (8.0 + TEXT_BYTES),
+            8.0 * (40.0 + 2.0 * bodies) + (60.0 + 4.0 * bodies) * TEXT_BYTES,
+        ],
+        disk: [
+            3.0 * dofs * TEXT_BYTES,
+            dofs * TEXT_BYTES * (2.0 + 6.0 * vtk),
+            (60.0 + 4.0 * bodies) * TEXT_BYTES,
+        ],
+        memory_how: "16 MiB + 8 B × dofs (70 + 4 log₂ dofs) + output times × [2 × 8 B × \
+                     (2 dofs + 12 nodes) + 2 dofs × 40 B of text; VTK: 6 dofs × 48 B] + (N + 1) \
+                     × [8 B × (40 + 2 bodies) + 40 B × (60 + 4 bodies)]",
+        disk_how: "40 B a number: output times × dofs (2, VTK 8) + (N + 1) × (60 + 4 bodies)",
+    };
+    run.require()
 }

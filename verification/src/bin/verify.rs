@@ -8,7 +8,7 @@
 //! - `verify --shard I/N`           a deterministic 1/N of the run (balanced by recorded times)
 //! - `verify merge DIR… --out OUT`  join the shards' directories into one run's report
 //! - `verify --list`                the catalogue: tier and last measured time of every case
-//! - `verify scene FILE.toml --out DIR [--max-memory 4G] [--vtk]`   run a user's scene (--vtk:
+//! - `verify scene FILE.toml --out DIR [--max-memory 4G] [--max-disk 8G] [--vtk]`   run a user's scene (--vtk:
 //!   also ParaView files)
 //! - `verify compare BEFORE AFTER [--noise BEFORE2]`   are two report directories the same numbers?
 //! - `verify readme [--check]`   the README's numbers, generated from reports/
@@ -89,6 +89,11 @@ enum Command {
         /// else half of the machine's memory).
         #[arg(long)]
         max_memory: Option<String>,
+        /// The most the run's files may take on disk (bytes, or with K, M, G, T): a scene whose
+        /// files are estimated above it is refused before it runs (default: CONTACTLAB_MAX_DISK,
+        /// else 8 GiB).
+        #[arg(long)]
+        max_disk: Option<String>,
         /// Stop the run after this many seconds (a typed error naming the step it reached; what
         /// the solver computed until then is written where the model records it).
         #[arg(long, value_name = "SECONDS")]
@@ -234,6 +239,7 @@ fn main() -> ExitCode {
             file,
             out,
             max_memory,
+            max_disk,
             time_limit,
             vtk,
         }) => {
@@ -256,6 +262,17 @@ fn main() -> ExitCode {
                     None => {
                         eprintln!(
                             "error: invalid --max-memory = {text}: expected a size in bytes, e.g. 4G or 512M"
+                        );
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            if let Some(text) = max_disk {
+                match contactlab::scene::memory::parse_size(text) {
+                    Some(bytes) => contactlab::scene::memory::set_disk_limit(bytes),
+                    None => {
+                        eprintln!(
+                            "error: invalid --max-disk = {text}: expected a size in bytes, e.g. 8G or 512M"
                         );
                         return ExitCode::from(2);
                     }
@@ -305,6 +322,10 @@ fn main() -> ExitCode {
                 cost,
                 rounds: *rounds,
             };
+            if let Err(e) = request.validate() {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
             let base = match base.as_deref().map(|b| {
                 let v: Vec<Option<usize>> = b.split(',').map(|x| x.trim().parse().ok()).collect();
                 match v.as_slice() {

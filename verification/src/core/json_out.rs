@@ -16,13 +16,34 @@ pub fn finite_json<T: Serialize>(value: &T, pretty: bool) -> Result<String, Stri
         serde_json::to_string(value)
     }
     .map_err(|e| e.to_string())?;
-    let parsed: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
-    match first_null(&parsed, "") {
-        None => Ok(text),
-        Some(at) => Err(format!(
-            "a number that is not finite (NaN or ∞) at {at}; the file is not written"
-        )),
+    // the scan holds nothing beside the text; the parsed tree (several times the text: a
+    // `Value` per number) is built only to name the place of a null
+    if !has_null(&text) {
+        return Ok(text);
     }
+    let parsed: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    let at = first_null(&parsed, "").unwrap_or_else(|| "/".into());
+    Err(format!(
+        "a number that is not finite (NaN or ∞) at {at}; the file is not written"
+    ))
+}
+
+/// Whether the JSON `text` holds the literal `null` outside its strings (one pass over the
+/// bytes: a `"` opens or closes a string unless escaped by a `\`).
+fn has_null(text: &str) -> bool {
+    let b = text.as_bytes();
+    let mut in_string = false;
+    let mut i = 0;
+    while i < b.len() {
+        match (in_string, b[i]) {
+            (true, b'\\') => i += 1,
+            (_, b'"') => in_string = !in_string,
+            (false, b'n') if b[i..].starts_with(b"null") => return true,
+            _ => {}
+        }
+        i += 1;
+    }
+    false
 }
 
 /// The JSON pointer of the first `null` in `v`.
@@ -70,5 +91,12 @@ mod tests {
             b: f64::INFINITY,
         };
         assert!(finite_json(&inf, true).unwrap_err().contains("/b"));
+    }
+
+    #[test]
+    fn a_null_inside_a_string_is_text_not_a_number() {
+        assert!(!has_null(r#"{"title": "null \\\" null", "a": [1, 2]}"#));
+        assert!(has_null(r#"{"title": "x\\\"", "a": [1, null]}"#));
+        assert!(finite_json(&("null", 1.0), true).is_ok());
     }
 }

@@ -446,7 +446,8 @@ fn write_plots(
             let mut fig = Figure::new(format!("{title}: displacement snapshots"))
                 .x_label("x")
                 .y_label("u");
-            for (t, u) in snapshots {
+            for i in crate::plot::plotted_snapshots(snapshots.len()) {
+                let (t, u) = &snapshots[i];
                 fig = fig.series(Series::line(
                     format!("t = {t:.4e}"),
                     x.iter().copied().zip(b.nodal(u)),
@@ -463,8 +464,10 @@ fn write_plots(
         }
         SceneBody::Plane(p) => {
             let mesh = &p.data().mesh;
-            let mut states: Vec<(f64, &[f64])> =
-                snapshots.iter().map(|(t, u)| (*t, u.as_slice())).collect();
+            let mut states: Vec<(f64, &[f64])> = crate::plot::plotted_snapshots(snapshots.len())
+                .into_iter()
+                .map(|i| (snapshots[i].0, snapshots[i].1.as_slice()))
+                .collect();
             let t_last = recs.last().map_or(0.0, |r| r.time);
             if states.last().is_none_or(|(t, _)| *t != t_last) {
                 states.push((t_last, &run.displacement));

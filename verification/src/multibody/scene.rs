@@ -68,7 +68,7 @@ struct SolutionFile<'a> {
     /// The solver statistics (a completed run).
     #[serde(skip_serializing_if = "Option::is_none")]
     stats: Option<&'a MultibodyStats>,
-    records: Vec<Value>,
+    records: &'a [contactlab::model::multibody::audit::MultibodyRecord],
     history: &'a [HistoryRow],
     snapshots: Vec<SnapshotOut>,
     /// The last state reached.
@@ -118,7 +118,7 @@ pub fn write_scene(scene: &Scene, source: &str, out: &Path) -> Result<String, St
         claims: claims::of(scene),
         summary: json::summary(&summary, e0),
         stats,
-        records: run.records.iter().map(json::record).collect(),
+        records: &run.records,
         history: &run.history,
         snapshots: run
             .snapshots

@@ -49,3 +49,36 @@ pub use svg::{
 pub use triangles::{
     FieldValues, Outline, TriangleField, TriangleMeshPlot, TRIANGLE_PANEL_SIZE, TRIANGLE_SIZE,
 };
+
+/// The most snapshots a `snapshots.svg` draws: a figure of 20 000 panels is a gigabyte of SVG
+/// that nobody reads (every snapshot stays in solution.json and the VTK files).
+pub const MAX_PLOTTED_SNAPSHOTS: usize = 12;
+
+/// The indices of the snapshots drawn among `count`: all of them up to
+/// [`MAX_PLOTTED_SNAPSHOTS`], else that many evenly spaced, i = round(j (count − 1)/(max − 1)),
+/// the first and the last included.
+pub fn plotted_snapshots(count: usize) -> Vec<usize> {
+    if count <= MAX_PLOTTED_SNAPSHOTS {
+        return (0..count).collect();
+    }
+    let last = (count - 1) as f64;
+    let mut v: Vec<usize> = (0..MAX_PLOTTED_SNAPSHOTS)
+        .map(|j| (j as f64 * last / (MAX_PLOTTED_SNAPSHOTS - 1) as f64).round() as usize)
+        .collect();
+    v.dedup();
+    v
+}
+
+#[cfg(test)]
+mod plotted_snapshot_tests {
+    use super::*;
+
+    #[test]
+    fn at_most_twelve_snapshots_are_drawn_first_and_last_included() {
+        assert_eq!(plotted_snapshots(3), vec![0, 1, 2]);
+        let v = plotted_snapshots(20_000);
+        assert_eq!(v.len(), MAX_PLOTTED_SNAPSHOTS);
+        assert_eq!((v[0], v[v.len() - 1]), (0, 19_999));
+        assert!(v.windows(2).all(|w| w[0] < w[1]));
+    }
+}

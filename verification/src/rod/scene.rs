@@ -167,7 +167,8 @@ pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String,
     let mut snaps = Figure::new(format!("{title}: displacement snapshots"))
         .x_label("x")
         .y_label("u_h");
-    for s in &solution.snapshots {
+    for i in crate::plot::plotted_snapshots(solution.snapshots.len()) {
+        let s = &solution.snapshots[i];
         snaps = snaps.series(Series::line(
             format!("t = {}", s.t),
             solution.nodes.iter().copied().zip(s.u.iter().copied()),

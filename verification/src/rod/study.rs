@@ -216,6 +216,24 @@ impl RodStudy {
         steps: usize,
         scheme: TimeScheme,
     ) -> Result<RodSolver, LabError> {
+        // the memory first: a count beyond any machine (e.g. the planner's --base) is refused
+        // before the mesh is built
+        contactlab::scene::rod::require_rod_memory(
+            elements as f64 + 1.0,
+            steps as f64,
+            0.0,
+            0.0,
+            [
+                (
+                    "mesh.elements (M of a run; the planner's --base M0)",
+                    elements.to_string(),
+                ),
+                (
+                    "time.steps (N of a run; the planner's --base N0)",
+                    steps.to_string(),
+                ),
+            ],
+        )?;
         RodSolver::new(
             &self.problem,
             self.mesh(elements)?,

@@ -247,6 +247,11 @@ impl RotatingPlateModel {
                 per_harmonic.resize(n + 1, None);
             }
             if per_harmonic[n].is_none() {
+                // a stop request is honoured between two radial eigenproblems (each a dense
+                // solve of the radial basis' order: seconds for 1000 elements)
+                crate::run_control::check(|| {
+                    format!("the radial modes of harmonic n = {n} (angular function {k} of {nang})")
+                })?;
                 let (lambda, phi) = harmonic_modes(
                     radial,
                     r,

@@ -166,6 +166,23 @@ pub struct PlanRequest {
     pub rounds: usize,
 }
 
+impl PlanRequest {
+    /// Checks the rounds the user asked for: at least one pilot round (`--rounds`; the target
+    /// is checked with the functional, in the first round).
+    ///
+    /// # Errors
+    /// A message naming the option, its value and what is expected.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.rounds == 0 {
+            return Err(format!(
+                "invalid --rounds = {}: expected at least 1 pilot round",
+                self.rounds
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// One pilot run.
 #[derive(Debug, Clone, Serialize)]
 pub struct Pilot {
@@ -347,6 +364,7 @@ pub fn plan_with_base<P: Plannable>(
     request: &PlanRequest,
     base: (usize, usize),
 ) -> Result<PlanResult, String> {
+    request.validate()?;
     let mut base = base;
     let mut rounds = Vec::new();
     let mut earlier: Option<PlanResult> = None;
@@ -406,6 +424,24 @@ pub fn plan_with_base<P: Plannable>(
 fn next_base(needed: (usize, usize), base: (usize, usize)) -> (usize, usize) {
     let at = |n: usize, b: usize| if n > 2 * b { n.div_ceil(2) } else { n }.max(4);
     (at(needed.0, base.0), at(needed.1, base.1))
+}
+
+/// Why a scheme has no pilot: each pilot's step k = T/N (N ≤ N₀ of `base`) is above the
+/// margin × its stability bound.
+fn unstable_pilots(final_time: f64, base: (usize, usize), bound: Option<f64>) -> String {
+    let k_min = final_time / base.1.max(1) as f64;
+    match bound {
+        Some(b) => format!(
+            "every pilot is beyond the stability bound: the finest pilot's step k = T/N₀ = \
+             {k_min:.3e} (N₀ = {}) is above {} × k_max = {:.3e}; a base with N₀ ≥ {:.0} pilots \
+             this scheme",
+            base.1,
+            choose::STABILITY_MARGIN,
+            choose::STABILITY_MARGIN * b,
+            (4.0 * final_time / (choose::STABILITY_MARGIN * b)).ceil()
+        ),
+        None => "no pilot ran".to_string(),
+    }
 }
 
 /// One round of [`plan`] with its finest pilot at `base`.
@@ -525,6 +561,21 @@ fn plan_from<P: Plannable>(
             continue;
         }
         let own: Vec<&Pilot> = pilots.iter().filter(|x| x.scheme == name).collect();
+        if own.is_empty() {
+            // every pilot beyond the stability bound: no value to model (a mean of no values
+            // would be NaN in the plan)
+            let bound = p.stability_bound(s);
+            summaries.push(SchemeSummary {
+                scheme: name,
+                error_model: None,
+                cost_model: None,
+                expected_orders: p.expected_orders(s, &request.functional),
+                stability_bound: bound,
+                gci: None,
+                rejected: Some(unstable_pilots(p.final_time(), base, bound)),
+            });
+            continue;
+        }
         let col = |f: fn(&Pilot) -> f64| own.iter().map(|x| f(x)).collect::<Vec<f64>>();
         let (h, k, e) = (col(|x| x.h), col(|x| x.k), col(|x| x.error));
         let values: Vec<f64> = own.iter().filter_map(|x| x.value).collect();

@@ -7,7 +7,7 @@ use serde_json::{json, Value};
 
 use contactlab::error::{Error as LabError, SolveError};
 use contactlab::model::dynamic::body::ElasticBody;
-use contactlab::model::multibody::audit::{MultibodyRecord, MultibodySummary};
+use contactlab::model::multibody::audit::MultibodySummary;
 use contactlab::model::multibody::constraint::Enforcement;
 use contactlab::model::multibody::solver::{ContactState, MultibodySnapshot, PairMaster};
 use contactlab::scene::multibody::MultibodyScene;
@@ -169,17 +169,6 @@ pub fn snapshot(scene: &MultibodyScene, s: &MultibodySnapshot) -> SnapshotOut {
             .collect(),
         contacts: s.contacts.iter().map(|c| contact(scene, c)).collect(),
     }
-}
-
-/// An audit record as JSON: `min_gap` left out where there is no candidate (it is +∞ there).
-pub fn record(r: &MultibodyRecord) -> Value {
-    let mut v = serde_json::to_value(r).unwrap_or(Value::Null);
-    if !r.min_gap.is_finite() {
-        if let Value::Object(o) = &mut v {
-            o.remove("min_gap");
-        }
-    }
-    v
 }
 
 /// The audit summary as JSON: the drifts relative to E_0 left out when E_0 = 0 (bodies at rest

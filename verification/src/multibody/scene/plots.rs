@@ -37,7 +37,10 @@ pub fn write(
         &out.join("contact.svg"),
     )
     .map_err(e)?;
-    let mut states: Vec<&MultibodySnapshot> = run.snapshots.iter().collect();
+    let mut states: Vec<&MultibodySnapshot> = crate::plot::plotted_snapshots(run.snapshots.len())
+        .into_iter()
+        .map(|i| &run.snapshots[i])
+        .collect();
     if let Some(last) = &run.last {
         if states.last().is_none_or(|s| s.step != last.step) {
             states.push(last);
