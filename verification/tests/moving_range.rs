@@ -228,3 +228,48 @@ fn plate_frequencies_keep_rate_four_to_512_elements() {
         "critical speed: e(512) = {c512:e}, e(64) = {c64:e}, model {crit_model:e}"
     );
 }
+
+/// Issue 31: past the critical speed the fixed-fixed string's Ritz models flutter with a growth
+/// rate that grows with N (the continuum's eigenvalues inπ(1 − v̄²) stay imaginary): the verdict
+/// must carry the supercritical warning, below v̄ = 1 it must not, and λ₁ converges either way.
+#[test]
+fn past_the_critical_speed_the_verdict_carries_a_warning_whose_growth_rate_grows_with_n() {
+    use contactlab::model::moving::linearized::assess_point;
+    use contactlab::model::moving::stability::Verdict;
+    use contactlab::model::moving::string_data::MovingStringData;
+    for v in [0.5f64, 1.5] {
+        let exact = std::f64::consts::PI * (1.0 - v * v).abs();
+        let (mut rates, mut errors) = (Vec::new(), Vec::new());
+        for n in [20, 40] {
+            let model =
+                MovingStringModel::new(StringDiscretization::Sine { modes: n }, Default::default())
+                    .unwrap();
+            let d = MovingStringData {
+                speed: v,
+                damping: 0.0,
+                oscillator: None,
+            };
+            let ev = model_eigenvalues(&model, &d).unwrap();
+            let a = assess_point(&model, &d, &ev, &VerdictParams::default());
+            let lowest = ev
+                .iter()
+                .filter(|l| l.im > 0.0)
+                .map(|l| l.im)
+                .fold(f64::INFINITY, f64::min);
+            errors.push((lowest - exact).abs() / exact);
+            match a.supercritical {
+                None => {
+                    assert!(v < 1.0, "no warning at v̄ = {v}");
+                    assert_eq!(a.verdict, Verdict::Marginal);
+                }
+                Some(w) => {
+                    assert!(v > 1.0, "a warning at v̄ = {v}");
+                    assert_eq!(a.verdict, Verdict::Flutter);
+                    rates.push(w.discrete_growth_rate);
+                }
+            }
+        }
+        assert!(errors[1] < errors[0], "v̄ = {v}: λ₁ errors {errors:?}");
+        assert!(rates.windows(2).all(|r| r[1] > r[0]), "v̄ = {v}: {rates:?}");
+    }
+}

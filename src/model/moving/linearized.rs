@@ -5,7 +5,8 @@
 //! and one sweep driver serve both.
 
 use crate::error::Error;
-use crate::model::moving::resolution::model_resolution_limit;
+use crate::model::moving::resolution::{model_resolution_limit, supercritical_speed};
+use crate::model::moving::stability::{assess_resolved, StabilityAssessment, VerdictParams};
 use crate::model::moving::string_data::{MovingStringData, StringParameter};
 use crate::model::moving::string_model::MovingStringModel;
 use crate::model::moving::system::MovingSystem;
@@ -71,8 +72,28 @@ pub trait LinearizedModel: Sync {
     ) -> Option<(Vec<f64>, Vec<f64>, f64)>;
     /// The resolution limit ω_res of the verdicts (`resolution.rs`; ∞: every eigenvalue).
     fn resolution_limit(&self, data: &Self::Data) -> f64;
+    /// `Some(speed)` when the verdict at `data` is the discrete model's and not the
+    /// continuum's: the string past its critical speed (`resolution.rs`). None by default.
+    fn supercritical_speed(&self, _data: &Self::Data) -> Option<f64> {
+        None
+    }
     /// A short description of the point for error messages.
     fn describe(&self, data: &Self::Data) -> String;
+}
+
+/// The verdict of `model` at `data` from its `eigenvalues`: [`assess_resolved`] below the
+/// model's resolution limit, with the supercritical warning when the model has one there.
+pub fn assess_point<Mo: LinearizedModel + ?Sized>(
+    model: &Mo,
+    data: &Mo::Data,
+    eigenvalues: &[faer::c64],
+    params: &VerdictParams,
+) -> StabilityAssessment {
+    let mut a = assess_resolved(eigenvalues, params, model.resolution_limit(data));
+    if let Some(speed) = model.supercritical_speed(data) {
+        a.flag_supercritical(speed, eigenvalues, params);
+    }
+    a
 }
 
 impl LinearizedModel for MovingStringModel {
@@ -124,6 +145,10 @@ impl LinearizedModel for MovingStringModel {
 
     fn resolution_limit(&self, data: &MovingStringData) -> f64 {
         model_resolution_limit(self, data.speed)
+    }
+
+    fn supercritical_speed(&self, data: &MovingStringData) -> Option<f64> {
+        supercritical_speed(data.speed)
     }
 
     fn describe(&self, data: &MovingStringData) -> String {

@@ -29,6 +29,24 @@
 //!
 //! Real eigenvalues (divergence, |Im λ| = 0) always count. At |v̄| = 1 exactly, ω_res = 0: only
 //! real eigenvalues are read (the string has lost its stiffness there).
+//!
+//! Past the critical speed, |v̄| > 1, no resolution limit helps (issue 31). The string
+//! w_tt + 2v̄ w_ξt − (1 − v̄²) w_ξξ = 0 carries its waves at the characteristic speeds v̄ ± 1,
+//! which then have the same sign: every wave enters at the upstream guide and leaves at the
+//! downstream one. Fixing w = 0 at both guides puts one condition where two are needed and one
+//! where none may be: the initial-boundary value problem is overdetermined (initial data must
+//! satisfy w(1, τ) = 0 along the outgoing characteristics). Its eigenvalue problem still has
+//! the imaginary eigenvalues λ_n = inπ(1 − v̄²) — the continuum is formally marginal — but a Ritz
+//! model, whose coordinates are not bound by that constraint, is not: N sines at v̄ = 1.5 have
+//! complex pairs with Re λ = 14.0, 18.8, 24.2 for N = 20, 40, 80 (0.94 |λ|, 10⁷ times their
+//! band, at |Im λ| ≈ 4.9 between the exact λ₁ = 3.93 and λ₂ = 7.85, far below ω_res), P1 and
+//! Hermite meshes too (P1: a real λ = 38.7, 77.5, 184 for M = 20, 40, 80); already two sines
+//! flutter at v̄ = 1.5, in closed form. The growth rate does not fall with refinement — it grows,
+//! the mark of an ill-posed limit — while λ₁ still converges (errors 1.4e-4, 1.8e-5, 2.3e-6).
+//! The discrete instability appears once N(v̄² − 1) exceeds about 0.5 (none up to N = 160 at
+//! v̄ = 1.001; from N = 40 at v̄ = 1.01). A verdict past |v̄| = 1 is therefore the discrete
+//! model's; [`supercritical_speed`] marks those speeds and the verdicts carry a
+//! [`crate::model::moving::stability::SupercriticalWarning`].
 
 use std::f64::consts::PI;
 
@@ -48,6 +66,13 @@ pub fn wavenumber_limit(discretization: StringDiscretization) -> f64 {
 /// `speed` (module docs).
 pub fn resolution_limit(discretization: StringDiscretization, speed: f64) -> f64 {
     wavenumber_limit(discretization) * (1.0 - speed.abs()).abs()
+}
+
+/// `Some(speed)` past the critical speed, |v̄| > 1, where the verdict is the discrete model's
+/// and not the continuum's (module docs); `None` otherwise (|v̄| = 1 itself is the critical
+/// speed: ω_res = 0, only real eigenvalues are read).
+pub fn supercritical_speed(speed: f64) -> Option<f64> {
+    (speed.abs() > 1.0).then_some(speed)
 }
 
 /// The resolution limit of `model`'s discretization at the speed `speed`.
@@ -88,5 +113,54 @@ mod tests {
             let fe = StringDiscretization::FiniteElements { kind, elements: 50 };
             assert!((wavenumber_limit(fe) - 50.0 * PI).abs() < 1e-12);
         }
+    }
+
+    /// Two sines, v̄ = 1.5: det(λ²I + 2v̄λT + K) = (λ² + k₁)(λ² + k₂) + (16v̄λ/3)², k_n =
+    /// (1 − v̄²)(nπ)²: a quadratic in μ = λ² with complex roots, so Re λ = |Re √μ| ≠ 0.
+    fn two_sine_growth_rate(v: f64) -> f64 {
+        let (k1, k2) = ((1.0 - v * v) * PI * PI, 4.0 * (1.0 - v * v) * PI * PI);
+        let b = k1 + k2 + (16.0 * v / 3.0).powi(2);
+        let disc = faer::c64::new(b * b - 4.0 * k1 * k2, 0.0).sqrt();
+        [(-b + disc) * 0.5, (-b - disc) * 0.5]
+            .iter()
+            .map(|mu| mu.sqrt().re.abs())
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn past_the_critical_speed_the_verdict_carries_the_supercritical_warning() {
+        use crate::model::moving::linearized::assess_point;
+        use crate::model::moving::stability::{Verdict, VerdictParams};
+        use crate::model::moving::string_data::MovingStringData;
+        let params = VerdictParams::default();
+        let model =
+            MovingStringModel::new(StringDiscretization::Sine { modes: 2 }, Default::default())
+                .unwrap();
+        for v in [0.5, 1.5, -1.5] {
+            let d = MovingStringData {
+                speed: v,
+                damping: 0.0,
+                oscillator: None,
+            };
+            let ev = model.system(&d).unwrap().eigen(Default::default()).unwrap();
+            let a = assess_point(&model, &d, &ev.eigenvalues, &params);
+            if v.abs() < 1.0 {
+                assert_eq!(a.verdict, Verdict::Marginal);
+                assert!(a.supercritical.is_none());
+                continue;
+            }
+            // the discrete model's flutter is the closed form's, not round-off
+            let exact = two_sine_growth_rate(v);
+            let w = a.supercritical.expect("the warning past |v̄| = 1");
+            // (its pair lies above ω_res = 2π(|v̄| − 1) here: the warning, not the verdict, says it)
+            assert_eq!((w.speed, w.unstable_eigenvalues), (v, 2));
+            let floor = 64.0 * f64::EPSILON * a.spectral_scale;
+            assert!(
+                (w.discrete_growth_rate - exact).abs() <= floor,
+                "{w:?} vs {exact}"
+            );
+        }
+        assert_eq!(supercritical_speed(1.0), None);
+        assert_eq!(supercritical_speed(1.001), Some(1.001));
     }
 }

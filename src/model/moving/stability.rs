@@ -142,6 +142,43 @@ pub struct StabilityAssessment {
     pub resolution_limit: f64,
     /// The discretization warning: the unstable eigenvalues (Re λ > τ) above ω_res.
     pub unresolved: UnresolvedInstability,
+    /// The model's warning that this verdict is the discrete model's and not the continuum's
+    /// (the string past its critical speed, `resolution.rs`); `None` when the model has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub supercritical: Option<SupercriticalWarning>,
+}
+
+/// The string between fixed guides past its critical speed |v̄| > 1 (`resolution.rs`,
+/// [`crate::model::moving::resolution::supercritical_speed`]): the continuum's eigenvalues
+/// λ_n = inπ(1 − v̄²) are imaginary (marginal), but the verdict is the discrete model's, whose
+/// growth rate does not fall with refinement (it grows: measured in `moving_envelope`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SupercriticalWarning {
+    /// The transport speed v̄ (|v̄| > 1).
+    pub speed: f64,
+    /// The discrete model's growth rate: max Re λ over the eigenvalues with Re λ > τ(λ), every
+    /// one of them (resolved or not); 0 when none is unstable.
+    pub discrete_growth_rate: f64,
+    /// The number of those eigenvalues.
+    pub unstable_eigenvalues: usize,
+}
+
+impl StabilityAssessment {
+    /// Attaches the supercritical warning at the speed `speed` (|v̄| > 1), reading the discrete
+    /// growth rate from every eigenvalue against its own band τ(λ) ([`marginal_band`]).
+    pub fn flag_supercritical(&mut self, speed: f64, eigenvalues: &[c64], params: &VerdictParams) {
+        let rho = eigenvalues.iter().map(|l| l.norm()).fold(0.0, f64::max);
+        let unstable: Vec<f64> = eigenvalues
+            .iter()
+            .filter(|l| l.re > marginal_band(**l, params, eigenvalues.len(), rho))
+            .map(|l| l.re)
+            .collect();
+        self.supercritical = Some(SupercriticalWarning {
+            speed,
+            discrete_growth_rate: unstable.iter().copied().fold(0.0, f64::max),
+            unstable_eigenvalues: unstable.len(),
+        });
+    }
 }
 
 fn is_infinite(x: &f64) -> bool {
@@ -266,6 +303,7 @@ pub fn assess_resolved(
         spectral_scale: rho,
         resolution_limit,
         unresolved,
+        supercritical: None,
     }
 }
 

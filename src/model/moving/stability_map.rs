@@ -16,7 +16,7 @@ use faer::{c64, Mat};
 use serde::Serialize;
 
 use crate::error::{Error, InputError, SolveError};
-use crate::model::moving::linearized::LinearizedModel;
+use crate::model::moving::linearized::{assess_point, LinearizedModel};
 pub use crate::model::moving::linearized::{describe, AxisParameter};
 use crate::model::moving::stability::{
     assess, assess_resolved, StabilityAssessment, Verdict, VerdictParams,
@@ -311,9 +311,8 @@ pub fn stability_map<Mo: LinearizedModel>(
                 let mut d = *base;
                 model.set(x.parameter, &mut d, xv)?;
                 model.set(y.parameter, &mut d, y.values[iy])?;
-                let limit = model.resolution_limit(&d);
                 let ev = ws.eigenvalues(model, &d, params.eigen)?;
-                row.push(assess_resolved(ev, &params.verdict, limit));
+                row.push(assess_point(model, &d, ev, &params.verdict));
             }
             Ok(row)
         },
@@ -370,6 +369,8 @@ fn line_map<Mo: LinearizedModel>(
             model.set(line_axis.parameter, &mut d, 0.0)?;
             let at = || model.describe(&d);
             let limit = model.resolution_limit(&d);
+            // along the line only friction varies: the speed, and so the warning, is the line's
+            let supercritical = model.supercritical_speed(&d);
             let system = model.system(&d)?;
             let mut solver = QuadraticEigenSolver::new(system.mass.as_ref(), params.eigen)
                 .map_err(|source| SolveError::Eigenproblem { at: at(), source })?;
@@ -407,7 +408,11 @@ fn line_map<Mo: LinearizedModel>(
                             .zip(&im)
                             .map(|(a, b)| c64::new(gamma * a, gamma * b)),
                     );
-                    out.push(assess_resolved(&ev, &params.verdict, limit));
+                    let mut a = assess_resolved(&ev, &params.verdict, limit);
+                    if let Some(v) = supercritical {
+                        a.flag_supercritical(v, &ev, &params.verdict);
+                    }
+                    out.push(a);
                 } else {
                     // The small kernel's QR iteration ran out of sweeps (a stiff spectrum of a
                     // large basis): the point is solved by the reference kernel instead.
@@ -423,7 +428,7 @@ fn line_map<Mo: LinearizedModel>(
                             at: format!("{}, {} = {t}", at(), line_axis.parameter.key()),
                             source,
                         })?;
-                    out.push(assess_resolved(&full.eigenvalues, &params.verdict, limit));
+                    out.push(assess_point(model, &e, &full.eigenvalues, &params.verdict));
                 }
             }
             Ok(out)

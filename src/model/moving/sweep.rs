@@ -6,8 +6,8 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::model::moving::branches::{track_branches, EigenBranches};
-use crate::model::moving::linearized::LinearizedModel;
-use crate::model::moving::stability::{assess_resolved, StabilityAssessment, VerdictParams};
+use crate::model::moving::linearized::{assess_point, LinearizedModel};
+use crate::model::moving::stability::{StabilityAssessment, VerdictParams};
 use crate::model::moving::stability_map::{parallel_rows, EigenWorkspace, GridAxis};
 use crate::model::moving::string_data::MovingStringData;
 use crate::model::moving::string_model::MovingStringModel;
@@ -56,7 +56,7 @@ pub fn sweep<Mo: LinearizedModel>(
             let mut d = *base;
             model.set(axis.parameter, &mut d, axis.values[i])?;
             let ev = ws.eigenvalues(model, &d, eigen)?.to_vec();
-            let a = assess_resolved(&ev, verdict, model.resolution_limit(&d));
+            let a = assess_point(model, &d, &ev, verdict);
             Ok((ev, a))
         },
     )?;

@@ -5,8 +5,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, InputError, SolveError};
 use crate::model::moving::finite_element_basis::ElementKind;
-use crate::model::moving::resolution::model_resolution_limit;
-use crate::model::moving::stability::{assess_resolved, StabilityAssessment, VerdictParams};
+use crate::model::moving::linearized::assess_point;
+use crate::model::moving::stability::{StabilityAssessment, VerdictParams};
 use crate::model::moving::stability_map::{
     string_stability_map, GridAxis, StabilityMap, StabilityMapParams,
 };
@@ -356,11 +356,7 @@ impl MovingStringScene {
                 at: "the scene's point".into(),
                 source,
             })?;
-        let assessment = assess_resolved(
-            &eigen.eigenvalues,
-            &self.verdict,
-            model_resolution_limit(&self.model, self.data.speed),
-        );
+        let assessment = assess_point(&self.model, &self.data, &eigen.eigenvalues, &self.verdict);
         let mut sweeps = Vec::new();
         for axis in &self.sweeps {
             sweeps.push(string_sweep(

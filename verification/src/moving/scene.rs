@@ -18,7 +18,9 @@ use contactlab::model::moving::stability::StabilityAssessment;
 use contactlab::scene::moving::{MovingScene, StringSceneResult};
 
 use crate::moving::plots::{loci_figures, map_figure, root_locus, upper_branches};
-use crate::moving::scene_json::{map_json, map_summary, sweep_json, unresolved_warning};
+use crate::moving::scene_json::{
+    map_json, map_summary, supercritical_warning, sweep_json, unresolved_warning,
+};
 use crate::plot::{write_panels_svg, write_svg, Figure, Series};
 
 #[derive(Serialize)]
@@ -98,12 +100,13 @@ pub fn write_scene(scene: &MovingScene, source: &str, out: &Path) -> Result<Stri
                 )?;
             }
             Ok(format!(
-                "{source}: {} at the scene's point (max Re λ = {:.6e}, tolerance {:.1e}), {} eigenvalues{}{}{}",
+                "{source}: {} at the scene's point (max Re λ = {:.6e}, tolerance {:.1e}), {} eigenvalues{}{}{}{}",
                 r.assessment.verdict.name(),
                 r.assessment.max_real_part,
                 r.assessment.tolerance,
                 r.eigenvalues.len(),
                 unresolved_warning(&r.assessment),
+                supercritical_warning(&r.assessment),
                 if r.sweeps.is_empty() { String::new() } else { format!(", {} sweep(s)", r.sweeps.len()) },
                 r.map.as_ref().map_or(String::new(), map_summary)
             ))

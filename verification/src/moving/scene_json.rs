@@ -55,6 +55,18 @@ pub fn unresolved_warning(a: &StabilityAssessment) -> String {
     )
 }
 
+/// The supercritical warning of a point: the string past |v̄| = 1, whose verdict is the
+/// discrete model's (`contactlab::model::moving::resolution`).
+pub fn supercritical_warning(a: &StabilityAssessment) -> String {
+    let Some(w) = a.supercritical else {
+        return String::new();
+    };
+    format!(
+        "; warning: v̄ = {} is past the critical speed 1: the string between fixed guides is overdetermined there and the continuum's eigenvalues λ_n = inπ(1 − v̄²) are imaginary (marginal); this verdict is the discrete model's ({} eigenvalue(s) with Re λ above their band, growth rate {:.3e}), and refining does not remove it: the growth rate grows with the basis",
+        w.speed, w.unstable_eigenvalues, w.discrete_growth_rate
+    )
+}
+
 /// The verdict counts of a map, for the summary line.
 pub fn map_summary<P>(m: &StabilityMap<P>) -> String {
     format!(

@@ -12,9 +12,12 @@
 //!   speed on M radial elements against the Bessel roots (`exact::plate_annulus`): the finest M
 //!   at least as accurate as M = 64 and within the discretization model e(64)(64/M)^r, r the rate
 //!   of the coarse pair.
-//! - The thin undamped string at speeds near 0 and near the critical v̄ = 1, and past it: the
-//!   verdict is the continuum's (marginal for every v̄ ≠ 1: λ_n = inπ(1 − v̄²) in closed form),
-//!   and the lowest frequency converges in N towards π|1 − v̄²|.
+//! - The thin undamped string at speeds near 0 and near the critical v̄ = 1, and past it: below
+//!   v̄ = 1 the verdict is the continuum's (marginal: λ_n = inπ(1 − v̄²) in closed form); past it
+//!   the fixed-fixed string is overdetermined and its Ritz models flutter with a growth rate
+//!   that grows with N (issue 31, `resolution.rs`), so the verdict must carry the supercritical
+//!   warning, whose growth rate is checked against two sines in closed form and must not fall
+//!   with N; the lowest frequency converges in N towards π|1 − v̄²| at every speed.
 //! - Past the range: typed errors naming the key (a plate mesh beyond 4000 radial elements, a
 //!   bushing on a guide, a negative penalty stiffness).
 
@@ -23,6 +26,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use contactlab::model::moving::finite_element_basis::ElementKind;
+use contactlab::model::moving::linearized::assess_point;
 use contactlab::model::moving::plate::modes::harmonic_frequencies;
 use contactlab::model::moving::plate::{OuterEdge, PlateProperties};
 use contactlab::model::moving::resolution::model_resolution_limit;
@@ -339,6 +343,65 @@ struct SpeedPoint {
     verdict: Verdict,
     /// ||λ₁| − π|1 − v̄²|| / π|1 − v̄²|.
     lowest_error: f64,
+    /// Past |v̄| = 1: the supercritical warning's discrete growth rate (absent: no warning).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    discrete_growth_rate: Option<f64>,
+}
+
+/// The growth rate of two sines in closed form, written here: det(λ²I + 2v̄λT + K) =
+/// (λ² + k₁)(λ² + k₂) + (16v̄λ/3)² with k_n = (1 − v̄²)(nπ)² (T₁₂ = −8/3 = −T₂₁), a quadratic
+/// in μ = λ²; Re λ = max |Re √μ| (0 when both μ are real and negative: marginal).
+fn two_sine_growth_rate(v: f64) -> f64 {
+    let pi2 = std::f64::consts::PI.powi(2);
+    let (k1, k2) = ((1.0 - v * v) * pi2, 4.0 * (1.0 - v * v) * pi2);
+    let b = k1 + k2 + (16.0 * v / 3.0).powi(2);
+    let disc = contactlab::model::moving::c64::new(b * b - 4.0 * k1 * k2, 0.0).sqrt();
+    [(disc - b) * 0.5, (-disc - b) * 0.5]
+        .iter()
+        .map(|mu| mu.sqrt().re.abs())
+        .fold(0.0, f64::max)
+}
+
+fn thin_string(speed: f64) -> MovingStringData {
+    MovingStringData {
+        speed,
+        damping: 0.0,
+        oscillator: None,
+    }
+}
+
+/// Past |v̄| = 1: the warning's growth rate of two sines against the closed form (round-off
+/// floor 64 ε ρ, ρ = max |λ|), and the growth rate over N not falling (the warning's claim).
+fn supercritical_checks(v: f64, s: &SpeedEdge, rates: &[f64]) -> Result<Vec<Check>, String> {
+    let model = MovingStringModel::new(StringDiscretization::Sine { modes: 2 }, Default::default())
+        .map_err(|e| e.to_string())?;
+    let ev = model_eigenvalues(&model, &thin_string(v))?;
+    let a = assess_point(&model, &thin_string(v), &ev, &VerdictParams::default());
+    let exact = two_sine_growth_rate(v);
+    let computed = a.supercritical.map_or(f64::NAN, |w| w.discrete_growth_rate);
+    let floor = 64.0 * f64::EPSILON * a.spectral_scale;
+    Ok(vec![
+        Check::at_most(
+            &format!(
+                "v̄ = {v}, two sines: the warning's growth rate {computed:.6e} − the closed form's {exact:.6e} (64 ε ρ = {floor:.1e})"
+            ),
+            (computed - exact).abs(),
+            floor,
+        ),
+        Check::holds(
+            &format!(
+                "v̄ = {v}: the discrete growth rate over N = {:?}: {}",
+                s.modes,
+                rates
+                    .iter()
+                    .map(|r| format!("{r:.3e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            rates.windows(2).all(|r| r[1] >= r[0]),
+            "not falling with N (the warning: refinement does not remove it)",
+        ),
+    ])
 }
 
 fn speed_gates(s: &SpeedEdge, report: &mut CaseReport) -> Result<Vec<SpeedPoint>, String> {
@@ -346,67 +409,75 @@ fn speed_gates(s: &SpeedEdge, report: &mut CaseReport) -> Result<Vec<SpeedPoint>
     let mut checks = Vec::new();
     for &v in &s.speeds {
         let exact = std::f64::consts::PI * (1.0 - v * v).abs();
-        let mut errors = Vec::new();
+        let supercritical = v.abs() > 1.0;
+        let (mut errors, mut rates) = (Vec::new(), Vec::new());
         for &n in &s.modes {
             let model =
                 MovingStringModel::new(StringDiscretization::Sine { modes: n }, Default::default())
                     .map_err(|e| e.to_string())?;
-            let d = MovingStringData {
-                speed: v,
-                damping: 0.0,
-                oscillator: None,
-            };
+            let d = thin_string(v);
             let ev = model_eigenvalues(&model, &d)?;
-            let a = assess_resolved(
-                &ev,
-                &VerdictParams::default(),
-                model_resolution_limit(&model, v),
-            );
+            let a = assess_point(&model, &d, &ev, &VerdictParams::default());
             let lowest = ev
                 .iter()
                 .filter(|l| l.im > 0.0)
                 .map(|l| l.im)
                 .fold(f64::INFINITY, f64::min);
             let error = (lowest - exact).abs() / exact;
-            let expected = Verdict::Marginal;
-            checks.push(Check::holds(
-                &format!(
-                    "v̄ = {v}, N = {n}: verdict {} (λ₁ error {error:.2e})",
-                    a.verdict.name()
-                ),
-                a.verdict == expected,
-                expected.name(),
-            ));
+            let rate = a.supercritical.map(|w| w.discrete_growth_rate);
+            checks.push(if supercritical {
+                Check::holds(
+                    &format!(
+                        "v̄ = {v}, N = {n}: verdict {} with the supercritical warning (discrete growth rate {:.3e}; λ₁ error {error:.2e})",
+                        a.verdict.name(),
+                        rate.unwrap_or(f64::NAN)
+                    ),
+                    rate.is_some(),
+                    "the warning stated: the continuum is marginal, the verdict is the discrete model's",
+                )
+            } else {
+                Check::holds(
+                    &format!(
+                        "v̄ = {v}, N = {n}: verdict {} (λ₁ error {error:.2e}), no supercritical warning",
+                        a.verdict.name()
+                    ),
+                    a.verdict == Verdict::Marginal && rate.is_none(),
+                    "marginal, without the warning",
+                )
+            });
             errors.push(error);
+            rates.extend(rate);
             points.push(SpeedPoint {
                 speed: v,
                 modes: n,
                 verdict: a.verdict,
                 lowest_error: error,
+                discrete_growth_rate: rate,
             });
         }
-        {
-            let floor = 64.0 * f64::EPSILON;
-            checks.push(Check::holds(
-                &format!(
-                    "v̄ = {v}: λ₁'s error over N = {:?}: {}",
-                    s.modes,
-                    errors
-                        .iter()
-                        .map(|e| format!("{e:.2e}"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-                errors.windows(2).all(|e| e[1] <= e[0].max(floor)),
-                "not growing with N (above the round-off floor 64 ε)",
-            ));
+        let floor = 64.0 * f64::EPSILON;
+        checks.push(Check::holds(
+            &format!(
+                "v̄ = {v}: λ₁'s error over N = {:?}: {}",
+                s.modes,
+                errors
+                    .iter()
+                    .map(|e| format!("{e:.2e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            errors.windows(2).all(|e| e[1] <= e[0].max(floor)),
+            "not growing with N (above the round-off floor 64 ε)",
+        ));
+        if supercritical {
+            checks.extend(supercritical_checks(v, s, &rates)?);
         }
     }
     report.gates.push(GateVerdict::from_checks(
-        "thin undamped string near v̄ = 0, near and past v̄ = 1: the continuum's verdict, converging frequency".into(),
+        "thin undamped string near v̄ = 0, near and past v̄ = 1: the continuum's verdict below it, the supercritical warning past it, converging frequency".into(),
         "exact",
         checks,
-        "λ_n = inπ(1 − v̄²): imaginary for every v̄ ≠ 1 (the undamped string between fixed guides is marginal below and above the critical speed)",
+        "λ_n = inπ(1 − v̄²): imaginary for every v̄ ≠ 1. Past v̄ = 1 the fixed-fixed string is overdetermined (characteristics v̄ ± 1 of one sign) and its Ritz models are not marginal: the verdict must carry the warning, whose growth rate is the closed form's for two sines (written here) and does not fall with N",
     ));
     Ok(points)
 }
