@@ -173,10 +173,11 @@ pub(super) fn plane(
 }
 
 /// The body at t = 0 (nodes moved by `initial.displacement`) may not start inside the foundation
-/// {y ≤ level} deeper than the treatment admits: the layer depth g of `limited_penetration`, else
-/// the round-off of the gap, 8 ε (|level| + max |y|) + 1e-12 × the body's height (the tolerance of
-/// the multibody overlap check). A deeper start is a careless level or initial state; the solver
-/// would meet it as a singular Jacobian or a force beyond the range of doubles at the first step.
+/// {y ≤ level} deeper than the treatment admits: for `signorini` the round-off of the gap,
+/// 8 ε max(|level|, |y|) + 1e-12 × the body's height (the tolerance of the multibody overlap
+/// check); for `limited_penetration` the layer depth g; for the penalties (a prestressed start)
+/// the body's height. A deeper start is a careless level or initial state; the solver would meet
+/// it as a singular Jacobian or a force beyond the range of doubles at the first step.
 fn starts_outside(
     c: &ContactModel,
     nodes: &[[f64; 2]],
@@ -190,9 +191,14 @@ fn starts_outside(
             (lo.min(p[1]), hi.max(p[1]))
         });
     let scale = level.abs().max(lo.abs()).max(hi.abs());
+    let round_off = 8.0 * f64::EPSILON * scale + 1e-12 * (hi - lo);
     let allowed = match c.treatment {
-        NormalTreatment::LimitedPenetration { depth, .. } => depth,
-        _ => 8.0 * f64::EPSILON * scale + 1e-12 * (hi - lo),
+        NormalTreatment::LimitedPenetration { depth, .. } => depth + round_off,
+        NormalTreatment::Signorini => round_off,
+        // A penalty start inside the foundation is a prestressed start (dynamic_performance
+        // presses a ball 2 mm in); deeper than the body is tall, the body is not beside the
+        // foundation at all.
+        _ => (hi - lo) + round_off,
     };
     let deepest = c
         .nodes
