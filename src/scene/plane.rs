@@ -462,14 +462,14 @@ fn definite_form(
     let (Some(a2), Some(a1)) = (a2, a1) else {
         return Ok(());
     };
-    if !(a2 > 0.0) {
+    if a2.is_nan() || a2 <= 0.0 {
         return Err(InputError::new(
             format!("{prefix}.{k2}"),
             a2,
             format!("a number > 0 (with {k1}, the form is positive definite iff {k2} > 0 and {k2} + 2 {k1} > 0)"),
         ));
     }
-    if !(a2 + 2.0 * a1 > 0.0) {
+    if (a2 + 2.0 * a1).is_nan() || a2 + 2.0 * a1 <= 0.0 {
         return Err(InputError::new(
             format!("{prefix}.{k1}"),
             a1,
