@@ -176,7 +176,7 @@ impl TriangleMesh {
                 origin[k] + size[k] * grading[k].map(i as f64 / n as f64)
             }
         };
-        check_cell_shape(size, divisions, &coord)?;
+        check_cell_shape(size, divisions, coord)?;
         let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
         for j in 0..=ny {
             for i in 0..=nx {

@@ -126,29 +126,6 @@ pub fn require_disk(
     against_disk(field, written, estimate, how, limit, source)
 }
 
-fn against_disk(
-    field: &str,
-    written: impl std::fmt::Display,
-    estimate: f64,
-    how: &str,
-    limit: u64,
-    source: &str,
-) -> Result<(), InputError> {
-    if estimate.is_finite() && estimate <= limit as f64 {
-        return Ok(());
-    }
-    Err(InputError::new(
-        field,
-        written,
-        format!(
-            "a run whose files fit the disk limit: it writes about {} ({how}), above the limit \
-             of {} ({source}; set it with --max-disk or CONTACTLAB_MAX_DISK)",
-            human(estimate),
-            human(limit as f64)
-        ),
-    ))
-}
-
 /// Sets the limit for this process (0: back to the default).
 pub fn set_memory_limit(bytes: u64) {
     LIMIT_OVERRIDE.store(bytes, Ordering::Relaxed);
@@ -206,6 +183,13 @@ pub fn require_memory(
     against(field, written, estimate, how, limit, source)
 }
 
+/// The two limits a run is checked against, with their words.
+#[derive(Clone, Copy)]
+enum Limit {
+    Memory,
+    Disk,
+}
+
 fn against(
     field: &str,
     written: impl std::fmt::Display,
@@ -214,15 +198,59 @@ fn against(
     limit: u64,
     source: &str,
 ) -> Result<(), InputError> {
+    against_limit(
+        Limit::Memory,
+        field,
+        written,
+        estimate,
+        how,
+        (limit, source),
+    )
+}
+
+fn against_disk(
+    field: &str,
+    written: impl std::fmt::Display,
+    estimate: f64,
+    how: &str,
+    limit: u64,
+    source: &str,
+) -> Result<(), InputError> {
+    against_limit(Limit::Disk, field, written, estimate, how, (limit, source))
+}
+
+/// Refuses an estimate above `limit`, naming the count that drives it and how it was made.
+fn against_limit(
+    kind: Limit,
+    field: &str,
+    written: impl std::fmt::Display,
+    estimate: f64,
+    how: &str,
+    (limit, source): (u64, &str),
+) -> Result<(), InputError> {
     if estimate.is_finite() && estimate <= limit as f64 {
         return Ok(());
     }
+    let (what, verb, flag, env) = match kind {
+        Limit::Memory => (
+            "a scene that fits in memory",
+            "needs",
+            "--max-memory",
+            "CONTACTLAB_MAX_MEMORY",
+        ),
+        Limit::Disk => (
+            "a run whose files fit the disk limit",
+            "writes",
+            "--max-disk",
+            "CONTACTLAB_MAX_DISK",
+        ),
+    };
     Err(InputError::new(
         field,
         written,
         format!(
-            "a scene that fits in memory: it needs about {} ({how}), above the limit of {} \
-             ({source}; set it with --max-memory or CONTACTLAB_MAX_MEMORY)",
+            "{what}: it {verb} about {} ({how}), above the limit of {} ({source}; set it with \
+             {flag} or {env})",
             human(estimate),
             human(limit as f64)
         ),
