@@ -780,9 +780,31 @@ fn measured_peaks_stay_below_the_memory_estimate() {
         ),
         ("plane", "plane_paper_test_2d.toml", vec![]),
     ];
-    for (id, name, set) in &scenes {
-        let set: Vec<(&str, &str)> = set.iter().map(|(k, v)| (*k, v.as_str())).collect();
-        let file = scene_file(id, name, &set);
+    let mut texts: Vec<(&str, String)> = scenes
+        .iter()
+        .map(|(id, name, set)| {
+            let set: Vec<(&str, &str)> = set.iter().map(|(k, v)| (*k, v.as_str())).collect();
+            (*id, mutated(name, &set))
+        })
+        .collect();
+    // the slenderest mesh measured: a ring one cell across and 3 000 around (the step's LU
+    // factor holds ~ c n √n numbers, docs/multibody.md "Memory"), one step
+    let thin =
+        std::fs::read_to_string(root().join("examples/scenes/multibody_rings_friction.toml"))
+            .unwrap()
+            .replacen("around = 36", "around = 3000", 1)
+            .replace("radial = 2", "radial = 1")
+            .replace("around = 36", "around = 12")
+            .replace("final_time = 1.0", "final_time = 0.01")
+            .replace("steps = 200", "steps = 1")
+            .replace("times = [0.0, 0.25, 0.5, 0.75, 1.0]", "times = [0.0, 0.01]");
+    texts.push(("mb-thin-ring", thin));
+    for (id, text) in &texts {
+        let dir = std::env::temp_dir().join(format!("contactlab-i32-{id}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("scene.toml");
+        std::fs::write(&file, text).unwrap();
         let out = file.with_file_name("out");
         let (path, out) = (file.to_str().unwrap(), out.to_str().unwrap());
         let (refused, _) = verify_child(&["scene", path, "--max-memory", "1K", "--out", out]);
@@ -913,4 +935,36 @@ fn zero_plan_rounds_are_refused_naming_rounds() {
         err.contains("--rounds = 0") && err.contains("at least 1"),
         "{err}"
     );
+}
+
+#[test]
+fn a_plate_stopped_between_its_eigen_solves_says_so_within_one_solve() {
+    // The rotating plate with 400 radial elements and 6 harmonics: its model solves one dense
+    // radial eigenproblem per harmonic (≈ 0.1 s each here) before the sweep. A time limit of
+    // 0.2 s stops it between two of them: the error is the stop (it was reported as "invalid
+    // plate … beyond the range of doubles" before), at a harmonic before the last (not after all
+    // solves), honoured at the first check that found the limit passed (the limit's clock,
+    // contactlab::run_control).
+    let dir = std::env::temp_dir().join(format!("contactlab-plate-stop-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("scene.toml");
+    let scene = replaced("rotating_plate_pad.toml", "elements = 20", "elements = 400");
+    std::fs::write(&file, scene).unwrap();
+    let out = dir.join("out");
+    let (r, timing) =
+        contactlab::run_control::with_time_limit_measured(Duration::from_millis(200), || {
+            run_scene(&file, &out)
+        });
+    let e = r.expect_err("stopped");
+    assert!(
+        e.contains("the time limit of 0.2 s") && e.contains("radial modes of harmonic n = "),
+        "{e}"
+    );
+    assert!(!e.contains("invalid plate"), "{e}");
+    assert!(
+        !e.contains("harmonic n = 5"),
+        "stopped only after the last solve: {e}"
+    );
+    assert_eq!((timing.fired_checks, timing.threads), (1, 1), "{timing:?}");
 }

@@ -169,7 +169,7 @@ where
         let handles: Vec<_> = (0..threads)
             .map(|_| {
                 scope.spawn(|| {
-                    crate::run_control::with_deadline(deadline, || {
+                    crate::run_control::with_deadline(deadline.clone(), || {
                         let mut ws = workspace();
                         let mut mine = Vec::new();
                         loop {

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, InputError};
+use crate::error::{Error, InputError, SolveError};
 use crate::model::moving::plate::angular::AngularBasis;
 use crate::model::moving::plate::model::MAX_COORDINATES;
 use crate::model::moving::plate::radial::RadialBasis;
@@ -281,7 +281,8 @@ impl RotatingPlateScene {
             },
         )
         .map_err(|e| match e {
-            Error::Solve(s) => InputError::new(
+            // a stop request is not the plate's fault: it passes through as it is
+            Error::Solve(s) if !matches!(s, SolveError::Stopped { .. }) => InputError::new(
                 "plate",
                 format!(
                     "(b = {}, D = {}, ρh = {})",
