@@ -432,7 +432,12 @@ impl StateAuditor<'_> {
             w.rounding += GAP_ROUNDING * lambda.abs() * sz;
             let held = before.is_some_and(|b| b.active);
             let allow = self.allow_gain.get(c.pair).copied().unwrap_or(false);
-            if c.active && !held {
+            // re-paired from outside: listed on another segment at t_{n−1} with a gap ≥ 0 there
+            // (its g₀ against the new line is the master vertex's non-smoothness)
+            let repaired = before.is_some_and(|b| !same && b.gap >= 0.0);
+            if c.active && !held && repaired {
+                w.allowed += work.max(0.0);
+            } else if c.active && !held {
                 w.entries += 1;
                 w.entry_total += work;
                 w.entry_positive += work.max(0.0);

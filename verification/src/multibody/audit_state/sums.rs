@@ -19,9 +19,10 @@
 //! **Magnitudes** (for the round-off floors of `super`): each sum carries Σ |terms| — for the
 //! kinetic energy ρ A/24 (Σ_i |v_i|² + (Σ_i |v_i|)²) per element (bounding the magnitudes of the
 //! terms v_i (M v)_i the solver adds), for P and J the sums of |(M v)_i| and |x_i| |(M v)_i|, for
-//! the stored energy A (Σ |terms of W| + s (|H| + Σ_i |u_i| |∇N_i|)) with s a bound of the stress:
-//! an entry of H computed from displacements of size |u| rounds by ε Σ_i |u_i| |∇N_i| (a rigid
-//! translation cancels in it), and W moves by the stress times that.
+//! the stored energy A (Σ |terms of W| + s (1 + |H| + Σ_i |u_i| |∇N_i|)) with s a bound of the
+//! stress: an entry of H computed from displacements of size |u| rounds by ε Σ_i |u_i| |∇N_i| (a
+//! rigid translation cancels in it), an entry of F = I + H (the solver's argument of W) by
+//! ε (1 + |H|), and W moves by the stress times that.
 
 use contactlab::model::dynamic::bar::MassMatrix;
 use contactlab::model::multibody::bodies::BodySet;
@@ -156,7 +157,8 @@ pub fn state_sums(
                 .ok_or_else(|| format!("body {b} element {e}: det F ≤ 0 (inadmissible state)"))?;
             let hmax = h.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
             s.stored += area * w;
-            s.stored_size += area * (w_size + stress * (hmax + rounding));
+            // F = I + H as the solver forms it carries ε (1 + |H|) in each entry
+            s.stored_size += area * (w_size + stress * (1.0 + hmax + rounding));
             element_motion(&mut s, rho * area, lumped, &xr, &us, &vs);
             s.terms += 1;
         }
