@@ -25,11 +25,15 @@ const COMPARED: [&str; 3] = [
     "plateau_stress_error",
 ];
 
+/// One speed's run: v, its measurements, its audit checks, its unchanged-set energy ratio and
+/// its state-recomputed audit checks.
+type SpeedRun = (f64, Measured, Vec<Check>, f64, Vec<Check>);
+
 /// The study's gates and table.
 pub fn study(file: &ExtremesCase, spec: &SpeedsSpec) -> Result<(Vec<GateVerdict>, Table), String> {
     let c = file.wave_speed();
     let speeds = spec.speeds.clone();
-    let runs: Vec<(f64, Measured, Vec<Check>, f64, Vec<Check>)> = speeds
+    let runs: Vec<SpeedRun> = speeds
         .par_iter()
         .map(|&v| {
             let run = RunSpec::ordinary(file, v, Enforcement::Lagrange);
