@@ -6,7 +6,8 @@
 //! rises to ≈ 3 E₀ at M = 40 (docs/multibody.md §3.2), fails the recomputed energy bound that a
 //! conserving run is gated with; (2) records that book an energy gain as activation work, flip
 //! the sign of the activation work, or carry a wrong sign of P or K fail the comparison of the
-//! records with the state, while the same run's unaltered records pass it.
+//! records with the state, while the same run's unaltered records pass it; (3) multipliers of the
+//! wrong sign at an activation, or a force left on a released constraint, fail the sign laws.
 
 use contactlab::model::multibody::audit::MultibodyRecord;
 use contactlab::model::multibody::scheme::MultibodyScheme;
@@ -76,16 +77,26 @@ fn replay(
     kept: &Kept,
     alter: impl Fn(usize, &mut MultibodyRecord),
 ) -> StateAudit {
+    replay_states(solver, kept, |n, r, _| alter(n, r))
+}
+
+/// The state audit of kept views whose records and contact states `alter` changed.
+fn replay_states(
+    solver: &MultibodySolver,
+    kept: &Kept,
+    alter: impl Fn(usize, &mut MultibodyRecord, &mut Vec<ContactState>),
+) -> StateAudit {
     let mut auditor = StateAuditor::new(solver.problem(), &[MATERIAL; 2], &[]).unwrap();
     for (n, (u, v, c, r)) in kept.iter().enumerate() {
         let mut record = *r;
-        alter(n, &mut record);
+        let mut contacts = c.clone();
+        alter(n, &mut record, &mut contacts);
         auditor.observe(&MultibodyStepView {
             step: n,
             time: record.time,
             displacement: u,
             velocity: v,
-            contacts: c,
+            contacts: &contacts,
             record: &record,
         });
     }
@@ -198,4 +209,55 @@ fn a_wrong_sign_of_the_recorded_momentum_or_kinetic_energy_fails_the_record_comp
     );
     assert!(p.momentum_record_ratio > 1e6, "{p:?}");
     assert!(k.energy_record_ratio > 1e6, "{k:?}");
+}
+
+#[test]
+fn a_multiplier_of_the_wrong_sign_at_an_activation_fails_the_entry_sign_law() {
+    // M = 15: the faces meet at t = 0.1 = 1.5 k, inside a step (g₀ > 0 at the activation)
+    let solver = bars(15, MultibodyScheme::EnergyMomentum, false);
+    let kept = keep(&solver);
+    let first = kept
+        .iter()
+        .position(|k| k.3.activation_work < 0.0)
+        .expect("an activation that closes a gap");
+    let a = replay_states(&solver, &kept, |n, _, contacts| {
+        if n == first {
+            contacts.iter_mut().for_each(|c| c.lambda_n = -c.lambda_n);
+        }
+    });
+    eprintln!(
+        "λ flipped at the activation: entries' positive work/floor {:.3e}",
+        a.entry_work_ratio
+    );
+    assert!(a.entry_work_ratio > 1e6, "{a:?}");
+}
+
+#[test]
+fn a_force_left_on_a_released_constraint_fails_the_release_law() {
+    let solver = bars(20, MultibodyScheme::EnergyMomentum, false);
+    let kept = keep(&solver);
+    // the first step in which a constraint active before is inactive: give it its last force
+    let (n, key, lambda) = (1..kept.len())
+        .find_map(|n| {
+            kept[n].2.iter().find_map(|c| {
+                let before = kept[n - 1]
+                    .2
+                    .iter()
+                    .find(|b| b.pair == c.pair && b.slave == c.slave && b.active)?;
+                (!c.active).then_some((n, (c.pair, c.slave), before.lambda_n))
+            })
+        })
+        .expect("a release");
+    let a = replay_states(&solver, &kept, |m, _, contacts| {
+        if m == n {
+            for c in contacts.iter_mut().filter(|c| (c.pair, c.slave) == key) {
+                c.lambda_n = lambda;
+            }
+        }
+    });
+    eprintln!(
+        "force left on a release: releases' |work|/floor {:.3e}",
+        a.release_work_ratio
+    );
+    assert!(a.release_work_ratio > 1e3, "{a:?}");
 }
