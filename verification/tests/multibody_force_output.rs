@@ -13,6 +13,13 @@ use contactlab_verify::exact::bar_impact::{HeadOnBars, TwoBarImpact};
 use contactlab_verify::multibody::cases::bars::setup::{build, Geometry, Level, Treatment};
 use contactlab_verify::multibody::study::{run_recorded, LawName, MaterialSpec};
 
+/// The bars' material (linear, E = 1, ν = 0).
+const MATERIAL: MaterialSpec = MaterialSpec {
+    law: LawName::Linear,
+    young: 1.0,
+    poisson: 0.0,
+};
+
 /// The head-on bars (L = 1, H = 0.1, ρ = E = 1) at ±`v` on `elements` per bar, onset a third
 /// into a step, run to a quarter past the exact contact's end.
 fn bars(
@@ -35,11 +42,7 @@ fn bars(
         left_velocity: v,
         right_velocity: -v,
     };
-    let material = MaterialSpec {
-        law: LawName::Linear,
-        young: 1.0,
-        poisson: 0.0,
-    };
+    let material = MATERIAL;
     let exact = HeadOnBars {
         length: 1.0,
         density: 1.0,
@@ -72,7 +75,7 @@ fn force_errors(elements: usize) -> (f64, f64, usize) {
     let v = 0.1;
     let (solver, exact, level) = bars(elements, v);
     let end = exact.contact_end();
-    let run = run_recorded(&solver).expect("the run");
+    let run = run_recorded(&solver, &[MATERIAL; 2]).expect("the run");
     let force = exact.area() * exact.contact_stress();
     assert!((force - 1.0 * 1.0 * v * 0.1).abs() < 1e-15, "ρ c v A");
     let k = level.step;
@@ -129,7 +132,7 @@ fn head_on_bars_range_sweep() {
     for v in [0.001, 0.01, 0.03, 0.1, 0.2] {
         for m in [10, 20, 40, 80] {
             let (solver, exact, _) = bars(m, v);
-            match run_recorded(&solver) {
+            match run_recorded(&solver, &[MATERIAL; 2]) {
                 Ok(run) => {
                     let r = &run.solution.records;
                     let (e0, en) = (r[0].energy, r[r.len() - 1].energy);

@@ -19,6 +19,7 @@
 //! own evidence (its summary from the definition, injected defects it must flag).
 
 pub mod audit_reference;
+pub mod audit_state;
 pub mod cases;
 pub mod errors;
 pub mod scene;

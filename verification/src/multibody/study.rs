@@ -31,6 +31,7 @@ use contactlab::model::quasistatic::plane::{DirichletPart, TractionPart};
 use crate::core::context::RunContext;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
+use crate::multibody::audit_state::{StateAudit, StateAuditor};
 use crate::multibody::errors::centre_velocity;
 use crate::plot::{Figure, Series};
 
@@ -138,16 +139,24 @@ pub struct RecordedRun {
     pub solution: MultibodySolution,
     pub summary: MultibodySummary,
     pub history: Vec<StepHistory>,
+    /// The audit recomputed from the state (`crate::multibody::audit_state`).
+    pub state: StateAudit,
 }
 
 /// Solves `solver`'s problem, recording each body's centre-of-mass velocity and the contact
-/// forces after every step.
-pub fn run_recorded(solver: &MultibodySolver) -> Result<RecordedRun, String> {
+/// forces after every step, and auditing it from the state (body b of material `materials[b]`,
+/// as the case built it).
+pub fn run_recorded(
+    solver: &MultibodySolver,
+    materials: &[MaterialSpec],
+) -> Result<RecordedRun, String> {
     let bodies = &solver.problem().bodies;
     let mut scratch = vec![0.0; bodies.dofs()];
     let mut history = Vec::new();
+    let mut auditor = StateAuditor::new(solver.problem(), materials, &[])?;
     let solution = solver
         .solve_with(&mut |view| {
+            auditor.observe(view);
             history.push(StepHistory {
                 time: view.time,
                 velocities: (0..bodies.len())
@@ -168,10 +177,12 @@ pub fn run_recorded(solver: &MultibodySolver) -> Result<RecordedRun, String> {
         h.normal_force_mean = m;
     }
     let summary = solution.summary();
+    let state = auditor.finish()?;
     Ok(RecordedRun {
         solution,
         summary,
         history,
+        state,
     })
 }
 

@@ -3,6 +3,7 @@
 //! of the error model from the coarser levels, and the audit of every run.
 
 use crate::core::gate::{Check, GateVerdict};
+use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
 use crate::multibody::cases::bars::format::BarsCase;
 use crate::multibody::cases::bars::run::{parameter, series, Outcome};
 use crate::multibody::study::{audit_checks, audit_gate, Claims};
@@ -140,6 +141,20 @@ fn audit_gates(file: &BarsCase, outcomes: &[Outcome]) -> Vec<GateVerdict> {
                 &format!("{}/{}: audit", sweep.name, fam),
                 checks,
                 &note,
+            ));
+            let state = s
+                .iter()
+                .flat_map(|o| {
+                    state_audit_checks(
+                        &format!("M = {}, k = {:.3e}", o.level.elements, o.k),
+                        &o.state,
+                        o.claims,
+                    )
+                })
+                .collect();
+            out.push(state_audit_gate(
+                &format!("{}/{}: state-recomputed audit", sweep.name, fam),
+                state,
             ));
         }
     }

@@ -23,7 +23,7 @@ use serde::Serialize;
 use contactlab::model::multibody::solver::MultibodySolver;
 
 use crate::exact::bar_impact::TwoBarImpact;
-use crate::multibody::study::{run_recorded, RecordedRun};
+use crate::multibody::study::{run_recorded, MaterialSpec, RecordedRun};
 
 /// The measured errors (module docs), in report order.
 pub const ERRORS: [&str; 9] = [
@@ -70,8 +70,9 @@ pub fn measure(
     solver: &MultibodySolver,
     exact: &dyn TwoBarImpact,
     speed: f64,
+    material: &MaterialSpec,
 ) -> Result<(RecordedRun, Measured), String> {
-    let run = run_recorded(solver)?;
+    let run = run_recorded(solver, &vec![*material; solver.problem().bodies.len()])?;
     let k = solver.problem().final_time / solver.problem().steps as f64;
     let records = &run.solution.records;
     let e0 = records.first().map(|r| r.energy).unwrap_or(0.0);

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use contactlab::model::multibody::audit::{MultibodyRecord, MultibodySummary};
 
+use crate::multibody::audit_state::StateAudit;
 use crate::multibody::cases::bars::format::{BarsCase, SweepSpec};
 use crate::multibody::cases::bars::measure::{measure, Measured};
 use crate::multibody::cases::bars::setup::{build, Level, Treatment};
@@ -33,6 +34,8 @@ pub struct Outcome {
     pub k: f64,
     pub measured: Measured,
     pub summary: MultibodySummary,
+    /// The audit recomputed from the state.
+    pub state: StateAudit,
     pub claims: Claims,
     pub newton_iterations: usize,
     /// The histories and audit records (recorded runs only).
@@ -125,8 +128,8 @@ pub fn run_job(file: &BarsCase, job: &Job) -> Result<Outcome, String> {
         "{} / {} (M = {}, courant {})",
         conf.name, family.name, job.elements, job.courant
     );
-    let (run, measured) =
-        measure(&solver, exact.as_ref(), conf.speed).map_err(|e| format!("{label}: {e}"))?;
+    let (run, measured) = measure(&solver, exact.as_ref(), conf.speed, &material)
+        .map_err(|e| format!("{label}: {e}"))?;
     let claims = Claims::of(family.scheme, [true, true], material.is_objective());
     Ok(Outcome {
         job: *job,
@@ -135,6 +138,7 @@ pub fn run_job(file: &BarsCase, job: &Job) -> Result<Outcome, String> {
         k: level.step,
         measured,
         summary: run.summary,
+        state: run.state,
         claims,
         newton_iterations: run.solution.stats.newton_iterations,
         history: job

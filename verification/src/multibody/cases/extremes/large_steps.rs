@@ -14,6 +14,7 @@ use contactlab::model::multibody::scheme::MultibodyScheme;
 
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::Table;
+use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
 use crate::multibody::cases::extremes::format::{ExtremesCase, LargeStepsSpec};
 use crate::multibody::cases::extremes::observe::{observe, Observed};
 use crate::multibody::cases::extremes::setup::{build, RunSpec};
@@ -45,10 +46,17 @@ pub fn study(
     }
     let runs: Vec<(f64, RunSpec, Result<Observed, String>)> = jobs
         .par_iter()
-        .map(|&(m, run)| (m, run, build(file, &run).and_then(|s| observe(&s))))
+        .map(|&(m, run)| {
+            (
+                m,
+                run,
+                build(file, &run).and_then(|s| observe(&s, &file.material)),
+            )
+        })
         .collect();
     let mut structure = Vec::new();
     let mut audit = Vec::new();
+    let mut state = Vec::new();
     let mut rows = Vec::new();
     for (m, run, outcome) in &runs {
         let em = run.scheme == MultibodyScheme::EnergyMomentum;
@@ -93,11 +101,9 @@ pub fn study(
                 penetration,
                 spec.penetration,
             ));
-            audit.extend(audit_checks(
-                &label,
-                &o.summary,
-                Claims::of(run.scheme, [true, true], false),
-            ));
+            let claims = Claims::of(run.scheme, [true, true], false);
+            audit.extend(audit_checks(&label, &o.summary, claims));
+            state.extend(state_audit_checks(&label, &o.state, claims));
         }
         rows.push(vec![
             format!("{m}"),
@@ -126,6 +132,10 @@ pub fn study(
             audit,
             "free bars: P_x, P_y conserved at every k; the energy identity and ΔE = 0 between \
              set changes hold whatever the step",
+        ),
+        state_audit_gate(
+            "large steps (energy–momentum): state-recomputed audit",
+            state,
         ),
     ];
     let table = Table {

@@ -5,7 +5,9 @@
 use contactlab::model::multibody::audit::MultibodySummary;
 use contactlab::model::multibody::solver::{MultibodySolution, MultibodySolver};
 
+use crate::multibody::audit_state::{StateAudit, StateAuditor};
 use crate::multibody::errors::centre_velocity;
+use crate::multibody::study::MaterialSpec;
 
 /// One step's observations.
 #[derive(Debug, Clone, Copy, Default)]
@@ -24,6 +26,8 @@ pub struct Observation {
 pub struct Observed {
     pub solution: MultibodySolution,
     pub summary: MultibodySummary,
+    /// The audit recomputed from the state (`crate::multibody::audit_state`).
+    pub state: StateAudit,
     pub steps: Vec<Observation>,
 }
 
@@ -59,12 +63,15 @@ impl Observed {
 }
 
 /// Solves `solver`'s problem, observing every step.
-pub fn observe(solver: &MultibodySolver) -> Result<Observed, String> {
+pub fn observe(solver: &MultibodySolver, material: &MaterialSpec) -> Result<Observed, String> {
     let bodies = &solver.problem().bodies;
+    let materials = vec![*material; bodies.len()];
+    let mut auditor = StateAuditor::new(solver.problem(), &materials, &[])?;
     let mut scratch = vec![0.0; bodies.dofs()];
     let mut steps = Vec::new();
     let solution = solver
         .solve_with(&mut |view| {
+            auditor.observe(view);
             steps.push(Observation {
                 time: view.time,
                 velocities: [
@@ -81,6 +88,7 @@ pub fn observe(solver: &MultibodySolver) -> Result<Observed, String> {
     Ok(Observed {
         solution,
         summary,
+        state: auditor.finish()?,
         steps,
     })
 }

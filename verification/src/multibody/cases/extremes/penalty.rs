@@ -32,6 +32,7 @@ use contactlab::model::multibody::scheme::MultibodyScheme;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::Table;
 use crate::exact::bar_impact::TwoBarImpact;
+use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
 use crate::multibody::cases::extremes::format::{ConservingSpec, ExtremesCase, PenaltySpec};
 use crate::multibody::cases::extremes::observe::{observe, Observed};
 use crate::multibody::cases::extremes::setup::{build, RunSpec};
@@ -91,7 +92,10 @@ pub fn study(
                 scheme,
                 ..RunSpec::ordinary(file, v, law)
             };
-            (run, build(file, &run).and_then(|s| observe(&s)))
+            (
+                run,
+                build(file, &run).and_then(|s| observe(&s, &file.material)),
+            )
         })
         .collect();
     let mut runs = Vec::new();
@@ -129,11 +133,9 @@ pub fn study(
     let mut inverse = Vec::new();
     let mut differences = Vec::new();
     let mut force_checks = Vec::new();
-    let mut audit = audit_checks(
-        "Lagrange",
-        &runs[0].1.summary,
-        Claims::of(runs[0].0.scheme, [true, true], false),
-    );
+    let lagrange_claims = Claims::of(runs[0].0.scheme, [true, true], false);
+    let mut audit = audit_checks("Lagrange", &runs[0].1.summary, lagrange_claims);
+    let mut state = state_audit_checks("Lagrange", &runs[0].1.state, lagrange_claims);
     // E_0: both bars' kinetic energy ½ (2 ρ L H) v² (the bars start apart)
     let e0 = file.bars.density * file.bars.length * file.bars.height * v * v;
     let ctx = RowContext {
@@ -168,15 +170,13 @@ pub fn study(
             Enforcement::Penalty { .. } if scheme != spec.scheme => {
                 // not a discrete gradient: the momenta are gated (a central pair force has no
                 // resultant), and the energy the force puts into the contact
-                audit.extend(audit_checks(
-                    &name,
-                    &o.summary,
-                    Claims {
-                        identity: false,
-                        unchanged: false,
-                        ..Claims::of(run.scheme, [true, true], false)
-                    },
-                ));
+                let claims = Claims {
+                    identity: false,
+                    unchanged: false,
+                    ..Claims::of(run.scheme, [true, true], false)
+                };
+                audit.extend(audit_checks(&name, &o.summary, claims));
+                state.extend(state_audit_checks(&name, &o.state, claims));
                 let at = match others.iter().position(|x| x.0 == scheme) {
                     Some(at) => at,
                     None => {
@@ -204,6 +204,7 @@ pub fn study(
                     ..Claims::of(run.scheme, [true, true], false)
                 };
                 audit.extend(audit_checks(&name, &o.summary, claims));
+                state.extend(state_audit_checks(&name, &o.state, claims));
                 compliant_rows.push(r);
             }
             _ => {
@@ -229,11 +230,9 @@ pub fn study(
                 }
                 conserving_inverse.push(1.0 / f);
                 penetrations.push(o.max_penetration());
-                audit.extend(audit_checks(
-                    &name,
-                    &o.summary,
-                    Claims::of(run.scheme, [true, true], false),
-                ));
+                let claims = Claims::of(run.scheme, [true, true], false);
+                audit.extend(audit_checks(&name, &o.summary, claims));
+                state.extend(state_audit_checks(&name, &o.state, claims));
                 conserving_rows.push(r);
             }
         }
@@ -298,6 +297,10 @@ pub fn study(
             note,
         ));
     }
+    gates.push(state_audit_gate(
+        "penalty and Lagrange runs: state-recomputed audit",
+        state,
+    ));
     gates.push(audit_gate(
         "penalty and Lagrange runs: audit",
         audit,

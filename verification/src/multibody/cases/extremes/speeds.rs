@@ -12,6 +12,7 @@ use contactlab::model::multibody::constraint::Enforcement;
 
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::Table;
+use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
 use crate::multibody::cases::bars::measure::{measure, Measured};
 use crate::multibody::cases::extremes::format::{ExtremesCase, SpeedsSpec};
 use crate::multibody::cases::extremes::setup::{build, RunSpec};
@@ -24,24 +25,29 @@ const COMPARED: [&str; 3] = [
     "plateau_stress_error",
 ];
 
+/// One speed's run: v, its measurements, its audit checks, its unchanged-set energy ratio and
+/// its state-recomputed audit checks.
+type SpeedRun = (f64, Measured, Vec<Check>, f64, Vec<Check>);
+
 /// The study's gates and table.
 pub fn study(file: &ExtremesCase, spec: &SpeedsSpec) -> Result<(Vec<GateVerdict>, Table), String> {
     let c = file.wave_speed();
     let speeds = spec.speeds.clone();
-    let runs: Vec<(f64, Measured, Vec<Check>, f64)> = speeds
+    let runs: Vec<SpeedRun> = speeds
         .par_iter()
         .map(|&v| {
             let run = RunSpec::ordinary(file, v, Enforcement::Lagrange);
             let solver = build(file, &run)?;
             let exact = file.bars.exact(file.material.young, v);
-            let (recorded, measured) =
-                measure(&solver, &exact, v).map_err(|e| format!("speed {v}: {e}"))?;
+            let (recorded, measured) = measure(&solver, &exact, v, &file.material)
+                .map_err(|e| format!("speed {v}: {e}"))?;
             let claims = Claims {
                 unchanged: false,
                 ..Claims::of(run.scheme, [true, true], false)
             };
             let audit = audit_checks(&format!("v = {v:e}"), &recorded.summary, claims);
-            Ok((v, measured, audit, recorded.summary.unchanged_ratio))
+            let state = state_audit_checks(&format!("v = {v:e}"), &recorded.state, claims);
+            Ok((v, measured, audit, recorded.summary.unchanged_ratio, state))
         })
         .collect::<Result<_, String>>()?;
     let v_min = speeds.iter().copied().fold(f64::INFINITY, f64::min);
@@ -54,8 +60,9 @@ pub fn study(file: &ExtremesCase, spec: &SpeedsSpec) -> Result<(Vec<GateVerdict>
     let mut spread = Vec::new();
     let mut rebound = Vec::new();
     let mut audit = Vec::new();
+    let mut state = Vec::new();
     let mut rows = Vec::new();
-    for (v, m, a, unchanged) in &runs {
+    for (v, m, a, unchanged, st) in &runs {
         for name in COMPARED {
             if *v == v_min {
                 continue;
@@ -72,6 +79,7 @@ pub fn study(file: &ExtremesCase, spec: &SpeedsSpec) -> Result<(Vec<GateVerdict>
             spec.rebound_ceiling,
         ));
         audit.extend(a.iter().cloned());
+        state.extend(st.iter().cloned());
         let mut row = vec![format!("{v:e}")];
         row.extend(COMPARED.iter().map(|n| format!("{:.6e}", err(m, n))));
         row.push(format!("{:.6}", m.final_velocities[0] / v));
@@ -101,6 +109,7 @@ pub fn study(file: &ExtremesCase, spec: &SpeedsSpec) -> Result<(Vec<GateVerdict>
              changes is reported, not claimed, in this study: its ratio grows like 1/v (the \
              case's explanation)",
         ),
+        state_audit_gate("speeds: state-recomputed audit at every speed", state),
     ];
     let mut header = vec!["v".to_string()];
     header.extend(COMPARED.iter().map(|s| s.to_string()));

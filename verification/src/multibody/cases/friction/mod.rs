@@ -33,6 +33,7 @@ use crate::core::context::RunContext;
 use crate::core::format::CaseError;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::CaseReport;
+use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
 use crate::multibody::cases::friction::format::FrictionCase;
 use crate::multibody::cases::friction::run::Run;
 use crate::multibody::cases::friction::setup::Setting;
@@ -253,6 +254,14 @@ fn gates(file: &FrictionCase, runs: &[Run], report: &mut CaseReport) {
             .iter()
             .flat_map(|r| audit_checks(&label(r), &r.audit, claims))
             .collect();
+        let state = of
+            .iter()
+            .flat_map(|r| state_audit_checks(&label(r), &r.state, claims))
+            .collect();
+        report.gates.push(state_audit_gate(
+            &format!("{name}: state-recomputed audit"),
+            state,
+        ));
         report.gates.push(audit_gate(
             &format!("{name}: audit"),
             audit,

@@ -37,6 +37,7 @@ use contactlab::model::multibody::scheme::MultibodyScheme;
 use contactlab::model::multibody::solver::{MultibodySolution, MultibodyStats};
 
 use crate::exact::two_block_slide::{TwoBlockSlide, TwoBlockStop};
+use crate::multibody::audit_state::{StateAudit, StateAuditor};
 use crate::multibody::cases::friction::setup::{Setting, BASE, INTERFACE, LOWER, UPPER};
 use crate::multibody::errors::centre_velocity;
 
@@ -83,6 +84,9 @@ pub struct Run {
     pub dissipation: f64,
     pub friction_dissipation: f64,
     pub audit: MultibodySummary,
+    /// The audit recomputed from the state (`crate::multibody::audit_state`).
+    #[serde(skip)]
+    pub state: StateAudit,
     pub stats: MultibodyStats,
     pub seconds: f64,
     #[serde(skip)]
@@ -106,9 +110,12 @@ pub fn run(
     let bodies = &setting.bodies;
     let mut scratch = vec![0.0; bodies.dofs()];
     let mut rows: Vec<StepRow> = Vec::with_capacity(steps + 1);
+    let materials = vec![setting.material; bodies.len()];
+    let mut auditor = StateAuditor::new(solver.problem(), &materials, &[])?;
     let start = std::time::Instant::now();
     let solution: MultibodySolution = solver
         .solve_with(&mut |view| {
+            auditor.observe(view);
             let mut row = StepRow {
                 time: view.time,
                 upper: centre_velocity(bodies, UPPER, view.velocity, &mut scratch),
@@ -143,6 +150,7 @@ pub fn run(
         .map_err(|e| format!("{} (N = {steps}): {e}", scheme.name()))?;
     let seconds = start.elapsed().as_secs_f64();
     let audit = solution.summary();
+    let state = auditor.finish()?;
     let predicted = exact.discrete_stop(k);
     let threshold = slip_threshold(exact, k);
     // n_s: the first step in which no interface node slips by more than the threshold
@@ -273,6 +281,7 @@ pub fn run(
         dissipation,
         friction_dissipation,
         audit,
+        state,
         stats: solution.stats.clone(),
         seconds,
         rows,

@@ -14,7 +14,7 @@ use contactlab::model::multibody::surface::{ContactSurface, Foundation};
 use contactlab::model::quasistatic::plane::BoundarySelector;
 
 use crate::multibody::cases::friction::format::{BlocksSpec, RectSpec};
-use crate::multibody::study::rectangle_body;
+use crate::multibody::study::{rectangle_body, MaterialSpec};
 
 /// Body indices.
 pub const LOWER: usize = 0;
@@ -27,6 +27,8 @@ pub const BASE: usize = 1;
 #[derive(Debug, Clone)]
 pub struct Setting {
     pub bodies: BodySet,
+    /// The blocks' material (for the audit recomputed from the state).
+    pub material: MaterialSpec,
     pub pairs: Vec<ContactPair>,
     /// The static equilibrium under gravity (free dofs).
     pub equilibrium: Vec<f64>,
@@ -116,6 +118,7 @@ impl Setting {
         );
         Ok(Self {
             bodies,
+            material: spec.material,
             pairs,
             equilibrium: sol.displacement,
             velocity,

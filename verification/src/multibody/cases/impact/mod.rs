@@ -36,6 +36,7 @@ use crate::core::format::CaseError;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::{CaseReport, Table, WorkPoint, WorkPrecisionReport};
 use crate::multibody::audit_reference::audit_controls;
+use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
 use crate::multibody::study::{audit_checks, audit_gate, plot_audits, AuditRun, Claims};
 use crate::stats::gci::{analyse, GciResult};
 use format::ImpactCase;
@@ -219,6 +220,14 @@ pub fn run(case: &Case, ctx: &RunContext, report: &mut CaseReport) -> Result<(),
                     &format!("run {}", r.name),
                     checks,
                     "ratios are drifts over their round-off + Newton tolerances (docs/multibody.md §8)",
+                ));
+                report.gates.push(state_audit_gate(
+                    &format!("run {}: state-recomputed audit", r.name),
+                    state_audit_checks(
+                        &r.name,
+                        &o.run.state,
+                        Claims::of(r.scheme, [true, true], objective),
+                    ),
                 ));
                 rows.push(run_row(&r.name, o));
                 // the similar problem's curves are its size-1 run's, scaled (the gate says so)

@@ -18,6 +18,7 @@ use rayon::prelude::*;
 use crate::core::context::RunContext;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::{CaseReport, Table};
+use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
 use crate::multibody::cases::sliding::format::{GrazingSpec, SlidingCase};
 use crate::multibody::cases::sliding::reference::GrazingImpact;
 use crate::multibody::cases::sliding::setup::{grazing, observe, Observed};
@@ -150,9 +151,9 @@ pub fn study(
                 vn,
                 g.onset,
             );
-            let run =
-                observe(&grazing(file, g, vt, vn)?).map_err(|e| format!("v_n = {vn:e}: {e}"))?;
-            let normal = observe(&grazing(file, g, 0.0, vn)?)
+            let run = observe(&grazing(file, g, vt, vn)?, &file.material)
+                .map_err(|e| format!("v_n = {vn:e}: {e}"))?;
+            let normal = observe(&grazing(file, g, 0.0, vn)?, &file.material)
                 .map_err(|e| format!("v_n = {vn:e}, v_t = 0: {e}"))?;
             measure(g, vn, exact, run, &normal)
         })
@@ -174,6 +175,7 @@ pub fn study(
     let mut tangential = Vec::new();
     let mut normal = Vec::new();
     let mut audit = Vec::new();
+    let mut state = Vec::new();
     let mut rows = Vec::new();
     for a in &angles {
         let label = format!("v_n/v_t = {:.0e}", a.vn / vt);
@@ -231,6 +233,7 @@ pub fn study(
             )
         };
         audit.extend(audit_checks(&label, &a.run.summary, claims));
+        state.extend(state_audit_checks(&label, &a.run.state, claims));
         audit.push(Check::at_most(
             &format!("{label}: max_n (E_n − E_0)/E_0 (no energy gain)"),
             a.energy_rise,
@@ -265,6 +268,10 @@ pub fn study(
         "reference",
         normal,
         &g.note,
+    ));
+    report.gates.push(state_audit_gate(
+        "grazing: state-recomputed audit at every angle",
+        state,
     ));
     report.gates.push(audit_gate(
         "grazing: audit at every angle",

@@ -17,9 +17,10 @@ use contactlab::model::multibody::solver::{
 use contactlab::model::multibody::surface::{ContactSurface, Foundation};
 use contactlab::model::quasistatic::plane::BoundarySelector;
 
+use crate::multibody::audit_state::{StateAudit, StateAuditor};
 use crate::multibody::cases::sliding::format::{GrazingSpec, SlideOffSpec, SlidingCase};
 use crate::multibody::errors::centre_velocity;
-use crate::multibody::study::rectangle_body;
+use crate::multibody::study::{rectangle_body, MaterialSpec};
 
 /// The body indices of the slide: the master and the slave.
 pub const MASTER: usize = 0;
@@ -54,6 +55,8 @@ pub struct Step {
 pub struct Observed {
     pub records: Vec<MultibodyRecord>,
     pub summary: MultibodySummary,
+    /// The audit recomputed from the state (`crate::multibody::audit_state`).
+    pub state: StateAudit,
     pub stats: MultibodyStats,
     pub steps: Vec<Step>,
     /// The step size.
@@ -61,8 +64,9 @@ pub struct Observed {
 }
 
 /// Runs `solver`, observing every step.
-pub fn observe(solver: &MultibodySolver) -> Result<Observed, String> {
+pub fn observe(solver: &MultibodySolver, material: &MaterialSpec) -> Result<Observed, String> {
     let problem = solver.problem();
+    let mut auditor = StateAuditor::new(problem, &vec![*material; problem.bodies.len()], &[])?;
     let bodies = &problem.bodies;
     let slave_nodes = problem
         .pairs
@@ -73,6 +77,7 @@ pub fn observe(solver: &MultibodySolver) -> Result<Observed, String> {
     let mut steps = Vec::new();
     let solution = solver
         .solve_with(&mut |view| {
+            auditor.observe(view);
             let centre: Vec<[f64; 2]> = (0..bodies.len())
                 .map(|b| centre_velocity(bodies, b, view.velocity, &mut scratch))
                 .collect();
@@ -117,6 +122,7 @@ pub fn observe(solver: &MultibodySolver) -> Result<Observed, String> {
         })
         .map_err(|e| e.to_string())?;
     Ok(Observed {
+        state: auditor.finish()?,
         summary: solution.summary(),
         records: solution.records,
         stats: solution.stats,

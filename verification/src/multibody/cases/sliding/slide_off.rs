@@ -18,6 +18,7 @@ use contactlab::model::multibody::solver::PairMaster;
 use crate::core::context::RunContext;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::{CaseReport, Table};
+use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
 use crate::multibody::cases::sliding::format::{SlideOffSpec, SlidingCase};
 use crate::multibody::cases::sliding::reference::SlideKinematics;
 use crate::multibody::cases::sliding::setup::{observe, slide, Observed, MASTER, SLAVE};
@@ -85,7 +86,7 @@ fn measure(
         .iter()
         .map(|&n| solver.problem().bodies.reference(SLAVE, n)[0])
         .collect();
-    let run = observe(&solver).map_err(|e| format!("{name}: {e}"))?;
+    let run = observe(&solver, &file.material).map_err(|e| format!("{name}: {e}"))?;
     let kin = kinematics(s, xs);
     let eps = f64::EPSILON;
     let vt = s.tangential_speed;
@@ -178,6 +179,7 @@ pub fn study(
     let mut exact = Vec::new();
     let mut releases = Vec::new();
     let mut audit = Vec::new();
+    let mut state = Vec::new();
     let mut rows = Vec::new();
     for v in &variants {
         let steps = v.run.steps.len() - 1;
@@ -251,18 +253,16 @@ pub fn study(
             v.run.records.iter().all(|r| r.first_non_finite().is_none()),
             "finite",
         ));
-        audit.extend(audit_checks(
-            label,
-            &v.run.summary,
-            Claims {
-                unchanged: false,
-                ..Claims::of(
-                    contactlab::model::multibody::scheme::MultibodyScheme::EnergyMomentum,
-                    [true, true],
-                    false,
-                )
-            },
-        ));
+        let claims = Claims {
+            unchanged: false,
+            ..Claims::of(
+                contactlab::model::multibody::scheme::MultibodyScheme::EnergyMomentum,
+                [true, true],
+                false,
+            )
+        };
+        audit.extend(audit_checks(label, &v.run.summary, claims));
+        state.extend(state_audit_checks(label, &v.run.state, claims));
         let fmt_steps = |x: &[Option<usize>]| {
             x.iter()
                 .map(|n| n.map_or("–".to_string(), |n| n.to_string()))
@@ -319,6 +319,9 @@ pub fn study(
         releases,
         &s.note,
     ));
+    report
+        .gates
+        .push(state_audit_gate("slide-off: state-recomputed audit", state));
     report.gates.push(audit_gate(
         "slide-off: audit",
         audit,
