@@ -968,3 +968,35 @@ fn a_plate_stopped_between_its_eigen_solves_says_so_within_one_solve() {
     );
     assert_eq!((timing.fired_checks, timing.threads), (1, 1), "{timing:?}");
 }
+
+#[test]
+fn a_solver_failure_names_the_inputs_that_set_the_step_and_off_grid_times_name_the_grid() {
+    // The block drop with a penalty 10¹³: the first step's Newton method does not converge. The
+    // message ends with the keys that set the step's scales, as written (it ended with the
+    // residual and the audit's file only).
+    let e = run_bounded(
+        "likely-inputs",
+        mutated("dynamic_block_drop.toml", &[("contact.stiffness", "1e13")]),
+        None,
+        120,
+    )
+    .expect_err("the Newton method fails");
+    assert!(
+        e.contains("check these first")
+            && e.contains("contact.stiffness = 10000000000000")
+            && e.contains("time.steps = 100"),
+        "{e}"
+    );
+    // A rod whose final time moved away from its output times: the error names the grid's keys.
+    let e = run_bounded(
+        "off-grid",
+        mutated("rod_paper_p0_2.toml", &[("rod.final_time", "2.0")]),
+        None,
+        120,
+    )
+    .expect_err("an output time off the grid");
+    assert!(
+        e.contains("output.times") && e.contains("time.steps") && e.contains("final_time = 2"),
+        "{e}"
+    );
+}

@@ -307,7 +307,15 @@ pub fn stability_map<Mo: LinearizedModel>(
         || EigenWorkspace::new(model, base),
         |iy, ws: &mut EigenWorkspace| -> Result<Vec<StabilityAssessment>, Error> {
             let mut row = Vec::with_capacity(nx);
-            for &xv in &x.values {
+            for (ix, &xv) in x.values.iter().enumerate() {
+                // a stop is honoured within one eigen solve, also inside a long row
+                crate::run_control::check(|| {
+                    format!(
+                        "point {} of {nx} of row {} of the parameter grid",
+                        ix + 1,
+                        iy + 1
+                    )
+                })?;
                 let mut d = *base;
                 model.set(x.parameter, &mut d, xv)?;
                 model.set(y.parameter, &mut d, y.values[iy])?;
@@ -400,7 +408,15 @@ fn line_map<Mo: LinearizedModel>(
             let (mut re, mut im) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
             let mut ev = Vec::with_capacity(2 * n);
             let mut out = Vec::with_capacity(n_points);
-            for &t in &line_axis.values {
+            for (it, &t) in line_axis.values.iter().enumerate() {
+                // a stop is honoured within one eigen solve, also inside a long line
+                crate::run_control::check(|| {
+                    format!(
+                        "point {} of {n_points} of line {} of {n_lines} of the parameter grid",
+                        it + 1,
+                        il + 1
+                    )
+                })?;
                 if line.eigenvalues_at(t, &mut re, &mut im).is_ok() {
                     ev.clear();
                     ev.extend(

@@ -138,7 +138,12 @@ impl PlaneRecorder {
                 InputError::new(
                     format!("output.times[{i}]"),
                     t,
-                    format!("a time of the grid (T = {})", grid.final_time()),
+                    format!(
+                        "a time of the grid: t_n = n k, n = 0 … {} (time.steps), up to \
+                         time.final_time = {}",
+                        grid.steps(),
+                        grid.final_time()
+                    ),
                 )
             })?;
             // a time written twice (or two times of one step) is recorded once

@@ -93,7 +93,9 @@ impl RodRecorder {
                     format!("output.times[{i}]"),
                     t,
                     format!(
-                        "a time of the grid (t_n = n k for uniform steps; T = {})",
+                        "a time of the grid: t_n = n k, n = 0 … {} (time.steps), up to \
+                         rod.final_time = {} (k = final_time/steps for uniform steps)",
+                        grid.steps(),
                         grid.final_time()
                     ),
                 )

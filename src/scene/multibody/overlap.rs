@@ -269,8 +269,10 @@ fn overlap_error(
         format!(
             "bodies that do not overlap at t = 0 (a depth above the round-off tolerance {:e} = \
              1e-12 × the longest segment + 8 ε × the largest coordinate is an overlap; touching, \
-             g = 0, is accepted): move the bodies apart, or write initial_overlap = \"resolve\" \
-             in the section to start with the slave nodes moved onto the master",
+             g = 0, is accepted): move the bodies apart (the keys that place them: each body's \
+             origin, center or offset and its size; the pair's slave and master sides or group; \
+             a foundation's level), or write initial_overlap = \"resolve\" in the section to \
+             start with the slave nodes moved onto the master",
             deepest.tolerance
         )
     };

@@ -9,6 +9,7 @@ pub mod cpu_clock;
 pub mod format;
 pub mod gate;
 pub mod json_out;
+pub mod likely_inputs;
 pub mod overrides;
 pub mod plan;
 pub mod report;

@@ -330,11 +330,32 @@ pub fn write_scene(scene: &DynamicScene, source: &str, out: &Path) -> Result<Str
     match &run.result {
         Ok(_) => Ok(text),
         Err(e) => Err(format!(
-            "{text}\n{source}: the run stopped: {e}; the energy audit of the {steps_completed} \
+            "{text}\n{source}: the run stopped: {e}{}; the energy audit of the {steps_completed} \
              completed steps is in {}",
+            likely_inputs(scene, e),
             out.join("energy_audit.json").display()
         )),
     }
+}
+
+/// For a solver failure (not a stop), the keys that set the step's scales with their values
+/// ([`crate::core::likely_inputs`]).
+fn likely_inputs(scene: &DynamicScene, e: &contactlab::error::Error) -> String {
+    use crate::core::likely_inputs::{clause, optional, time_grid};
+    use contactlab::error::{Error, SolveError};
+    if !matches!(e, Error::Solve(s) if !matches!(s, SolveError::Stopped { .. })) {
+        return String::new();
+    }
+    let f = &scene.file;
+    let mut inputs = time_grid(f.time.final_time, Some(f.time.steps));
+    inputs.extend(optional("material.young", Some(f.material.young)));
+    inputs.extend(optional("body.density", Some(f.body.density)));
+    if let Some(c) = &f.contact {
+        inputs.extend(optional("contact.stiffness", c.stiffness));
+        inputs.extend(optional("contact.depth", c.depth));
+        inputs.extend(optional("contact.level", c.level));
+    }
+    clause(&inputs)
 }
 
 fn summary_text(scene: &DynamicScene, source: &str, run: &RecordedRun, s: &AuditSummary) -> String {

@@ -165,7 +165,9 @@ pub fn write_scene(scene: &Scene, source: &str, out: &Path) -> Result<String, St
     match &run.ending {
         Ending::Completed(_) => Ok(text),
         Ending::Failed(e) => Err(format!(
-            "{text}\n{source}: the run stopped: {e}; what the {} completed steps computed is in {}",
+            "{text}\n{source}: the run stopped: {e}{}; what the {} completed steps computed is \
+             in {}",
+            likely_inputs(scene, e),
             run.steps_completed(),
             out.join(name).display()
         )),
@@ -298,4 +300,41 @@ fn summary_text(
         s.steps_with_set_change,
         s.max_newton_iterations,
     )
+}
+
+/// For a solver failure (not a stop), the keys that set the step's scales with their values
+/// ([`crate::core::likely_inputs`]): the time grid, each body's stiffness, density and velocity,
+/// each pair's penalty stiffness and friction.
+fn likely_inputs(scene: &MultibodyScene, e: &contactlab::error::Error) -> String {
+    use crate::core::likely_inputs::{clause, optional, time_grid};
+    use contactlab::error::{Error, SolveError};
+    if !matches!(e, Error::Solve(s) if !matches!(s, SolveError::Stopped { .. })) {
+        return String::new();
+    }
+    let f = &scene.file;
+    let mut inputs = time_grid(f.time.final_time, Some(f.time.steps));
+    for (i, b) in f.body.iter().enumerate() {
+        inputs.extend(optional(
+            &format!("body[{i}].material.young"),
+            Some(b.material.young),
+        ));
+        inputs.extend(optional(&format!("body[{i}].density"), Some(b.density)));
+        inputs.push((
+            format!("body[{i}].velocity"),
+            format!("[{}, {}]", b.velocity[0], b.velocity[1]),
+        ));
+    }
+    for (j, p) in f.contact_pair.iter().enumerate() {
+        inputs.extend(optional(
+            &format!("contact_pair[{j}].stiffness"),
+            p.stiffness,
+        ));
+        if p.friction != 0.0 {
+            inputs.extend(optional(
+                &format!("contact_pair[{j}].friction"),
+                Some(p.friction),
+            ));
+        }
+    }
+    clause(&inputs)
 }

@@ -102,7 +102,7 @@ pub fn write_scene(scene: &PlaneScene, source: &str, out: &Path) -> Result<Strin
                 scene.grid.k_max()
             ),
             _ => format!("{source}: {e}"),
-        };
+        } + &likely_inputs(&scene.file, &e);
         // what was computed up to the failure is written, every number finite
         let Some(partial) = partial else {
             return message;
@@ -211,4 +211,45 @@ pub fn write_scene(scene: &PlaneScene, source: &str, out: &Path) -> Result<Strin
             .map(|w| format!("\nwarning: {w}"))
             .collect::<String>()
     ))
+}
+
+/// For a solver failure (not a stop, not an input refused), the keys that set the step's scales
+/// with their values ([`crate::core::likely_inputs`]): the time grid, the moduli, the contact
+/// law's constants.
+fn likely_inputs(f: &PlaneSceneFile, e: &contactlab::error::Error) -> String {
+    use crate::core::likely_inputs::{clause, optional, time_grid};
+    use contactlab::error::{Error, SolveError};
+    use contactlab::scene::field_spec::FieldSpec;
+    if !matches!(e, Error::Solve(s) if !matches!(s, SolveError::Stopped { .. })) {
+        return String::new();
+    }
+    let mut inputs = time_grid(f.time.final_time, f.time.steps);
+    for (section, m) in [("elasticity", &f.elasticity), ("viscosity", &f.viscosity)] {
+        for (key, v) in [
+            ("young", m.young),
+            ("mu", m.mu),
+            ("eta", m.eta),
+            ("a1", m.a1),
+            ("a2", m.a2),
+            ("lambda", m.lambda),
+            ("shear", m.shear),
+        ] {
+            inputs.extend(optional(&format!("{section}.{key}"), v));
+        }
+    }
+    if let Some(c) = &f.contact {
+        inputs.extend(optional("contact.beta", c.beta));
+        for (key, v) in [("p0", &c.p0), ("stress", &c.stress)] {
+            match v {
+                Some(FieldSpec::Number(x)) => {
+                    inputs.push((format!("contact.{key}"), x.to_string()))
+                }
+                Some(FieldSpec::Expression(t)) => {
+                    inputs.push((format!("contact.{key}"), format!("\"{t}\"")))
+                }
+                None => {}
+            }
+        }
+    }
+    clause(&inputs)
 }

@@ -629,11 +629,15 @@ fn stop_checks(models: &[String], results: &[SceneResult], report: &mut CaseRepo
             0.0,
         ));
         let within = stops.iter().filter(|t| t.within_longest_step()).count();
-        let latest = stops
+        let latest_scene = results
             .iter()
-            .filter_map(|t| t.fired_after_limit)
-            .max()
-            .unwrap_or_default();
+            .filter(|r| &r.model == m)
+            .filter_map(|r| Some((r.stop.as_ref()?.fired_after_limit?, r)))
+            .max_by_key(|(late, _)| *late);
+        let latest = latest_scene.map(|(l, _)| l).unwrap_or_default();
+        let which = latest_scene.map_or(String::new(), |(_, r)| {
+            format!("{}/{}: {}", r.base, r.index, r.mutations)
+        });
         let longest = stops
             .iter()
             .map(|t| t.longest_step_before)
@@ -645,6 +649,7 @@ fn stop_checks(models: &[String], results: &[SceneResult], report: &mut CaseRepo
             (stops.len() - ignored).to_string(),
             within.to_string(),
             format!("{:.4}", latest.as_secs_f64()),
+            which,
             format!("{:.4}", longest.as_secs_f64()),
         ]);
     }
@@ -656,6 +661,7 @@ fn stop_checks(models: &[String], results: &[SceneResult], report: &mut CaseRepo
             "honoured at the first check (timing: vs the limit)",
             "no later than the longest step before the limit (timing: vs the limit)",
             "latest stop after the limit, s (timing: vs the limit)",
+            "its base/index and mutations (timing: vs the limit)",
             "longest step before the limit, s (timing: vs the limit)",
         ]
         .iter()
@@ -714,14 +720,18 @@ fn unnamed_examples(c: &FuzzCase, results: &[SceneResult], report: &mut CaseRepo
     });
 }
 
-/// `message` cut to 300 characters (at a character boundary).
+/// `message` cut to its first and last 150 characters (at character boundaries): a run's
+/// summary comes first, the failure last.
 fn shortened(message: &str) -> String {
     if message.len() <= 300 {
         return message.to_string();
     }
-    let cut = (0..=300)
+    let head = (0..=150)
         .rev()
         .find(|&i| message.is_char_boundary(i))
         .unwrap_or(0);
-    format!("{}…", &message[..cut])
+    let tail = (message.len() - 150..message.len())
+        .find(|&i| message.is_char_boundary(i))
+        .unwrap_or(message.len());
+    format!("{} … {}", &message[..head], &message[tail..])
 }
