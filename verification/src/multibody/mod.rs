@@ -24,6 +24,7 @@ pub mod cases;
 pub mod errors;
 pub mod scene;
 pub mod scene_plan;
+pub mod spec;
 pub mod study;
 
 use std::path::Path;

@@ -28,7 +28,7 @@ use contactlab::model::multibody::solver::{ContactState, MultibodyProblem, Multi
 use super::geometry::{gap_xi_length, local_points, size};
 use super::sums::{state_sums, PlaneLaw, StateSums};
 use crate::core::gate::{Check, GateVerdict};
-use crate::multibody::study::{Claims, MaterialSpec};
+use crate::multibody::spec::{Claims, MaterialSpec};
 
 /// C of the floors C ε (N + 30) S.
 const C: f64 = 2.0;

@@ -27,7 +27,7 @@
 use contactlab::model::dynamic::bar::MassMatrix;
 use contactlab::model::multibody::bodies::BodySet;
 
-use crate::multibody::study::{LawName, MaterialSpec};
+use crate::multibody::spec::{LawName, MaterialSpec};
 
 /// A law with its plane-strain Lamé constants.
 #[derive(Debug, Clone, Copy)]
