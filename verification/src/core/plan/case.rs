@@ -62,6 +62,9 @@ pub struct PlanSpec {
     /// A first round whose pilots look asymptotic but are not where the choice lies: the chosen
     /// run must contradict the model (one round: the decision `missed`).
     pub missed: Option<PreAsymptoticSpec>,
+    /// The planner's whole bill against an oracle's over the box it searched
+    /// ([`crate::core::plan::oracle`]).
+    pub oracle: Option<crate::core::plan::oracle::OracleSpec>,
 }
 
 /// `[plan.pre_asymptotic]`.
@@ -132,6 +135,21 @@ impl PlanSpec {
                 );
             }
         }
+        if let Some(o) = &self.oracle {
+            if o.targets.is_empty()
+                || o.targets.iter().any(|t| !(*t > 0.0 && t.is_finite()))
+                || !(o.ratio > 1.0 && o.max_cost_ratio >= 1.0)
+            {
+                return bad(
+                    "plan.oracle",
+                    format!(
+                        "targets {:?}, ratio {}, max_cost_ratio {}",
+                        o.targets, o.ratio, o.max_cost_ratio
+                    ),
+                    "positive targets, ratio > 1, max_cost_ratio ≥ 1",
+                );
+            }
+        }
         Ok(())
     }
 
@@ -147,10 +165,14 @@ impl PlanSpec {
                 &functionals.join(", "),
             ));
         }
-        if self.exhaustive.is_some() {
+        let grid = [
+            ("plan.exhaustive", self.exhaustive.is_some()),
+            ("plan.oracle", self.oracle.is_some()),
+        ];
+        if let Some((key, _)) = grid.iter().find(|(_, set)| *set) {
             return Err(invalid(
                 path,
-                "plan.exhaustive",
+                key,
                 "(set)",
                 "no grid search without an exact solution",
             ));
@@ -493,6 +515,9 @@ pub fn run_targets<P: Plannable>(
             fig.series(Series::markers("grid's cheapest meeting the target", grid_points).color(6));
     }
     ctx.plot(report, "plan_work_precision", &fig)?;
+    if let Some(o) = &spec.oracle {
+        crate::core::plan::oracle::run(p, spec, o, report)?;
+    }
     extremes(p, spec, report)
 }
 

@@ -30,6 +30,7 @@ pub mod case;
 pub mod choose;
 pub mod impact;
 pub mod model;
+pub mod oracle;
 pub mod refine;
 pub mod render;
 
@@ -206,6 +207,9 @@ pub struct SchemeSummary {
     pub scheme: String,
     pub error_model: Option<ErrorModel>,
     pub cost_model: Option<crate::stats::cost_model::CostModelFit>,
+    /// Why the cost model is not the pilots' own fit (an overhead-dominated timing replaced by
+    /// the work's exponents, [`model::calibrated_to_work`]); None: the fit.
+    pub cost_note: Option<String>,
     pub expected_orders: (Option<f64>, Option<f64>),
     pub stability_bound: Option<f64>,
     /// Self-convergence: the GCI of the diagonal pilots (M₀/4, N₀/4), (M₀/2, N₀/2), (M₀, N₀)
@@ -277,6 +281,10 @@ pub struct PlanResult {
     /// of pilots would go).
     pub unconstrained: Option<Choice>,
     pub pilots: Vec<Pilot>,
+    /// Every pilot of every round the plan ran (`pilots` holds the deciding round's only): their
+    /// count and their summed cost in the request's unit — the planner's own share of the bill.
+    pub pilot_runs: usize,
+    pub pilots_cost: f64,
     pub schemes: Vec<SchemeSummary>,
     pub decision: Decision,
     pub executed: Option<Executed>,
@@ -368,8 +376,12 @@ pub fn plan_with_base<P: Plannable>(
     let mut base = base;
     let mut rounds = Vec::new();
     let mut earlier: Option<PlanResult> = None;
+    // every round's pilots, whichever round decides
+    let (mut pilot_runs, mut pilots_cost) = (0, 0.0);
     loop {
         let mut r = plan_from(p, request, base)?;
+        pilot_runs += r.pilot_runs;
+        pilots_cost += r.pilots_cost;
         // a round that refuses after an earlier round chose: the earlier choice stands (the
         // further round only looked for a cheaper one)
         if !matches!(
@@ -379,6 +391,7 @@ pub fn plan_with_base<P: Plannable>(
             if let Some(mut e) = earlier.take() {
                 rounds.push(base);
                 e.rounds = rounds;
+                (e.pilot_runs, e.pilots_cost) = (pilot_runs, pilots_cost);
                 return Ok(e);
             }
         }
@@ -410,6 +423,7 @@ pub fn plan_with_base<P: Plannable>(
             }
             _ => {
                 r.rounds = rounds;
+                (r.pilot_runs, r.pilots_cost) = (pilot_runs, pilots_cost);
                 return Ok(r);
             }
         }
@@ -553,6 +567,7 @@ fn plan_from<P: Plannable>(
                 scheme: name,
                 error_model: None,
                 cost_model: None,
+                cost_note: None,
                 expected_orders: p.expected_orders(s, &request.functional),
                 stability_bound: p.stability_bound(s),
                 gci: None,
@@ -569,6 +584,7 @@ fn plan_from<P: Plannable>(
                 scheme: name,
                 error_model: None,
                 cost_model: None,
+                cost_note: None,
                 expected_orders: p.expected_orders(s, &request.functional),
                 stability_bound: bound,
                 gci: None,
@@ -603,7 +619,22 @@ fn plan_from<P: Plannable>(
         let gci = self_convergence
             .then(|| diagonal_gci(&own, base, expected))
             .flatten();
-        let cost_model = fit_cost(&m, &n, &t);
+        let finest = own
+            .iter()
+            .max_by(|x, y| {
+                p.work(x.elements, x.steps)
+                    .total_cmp(&p.work(y.elements, y.steps))
+            })
+            .map(|x| (x.elements as f64, x.steps as f64, x.cost));
+        let (cost_model, cost_note) = match (fit_cost(&m, &n, &t), finest) {
+            (Ok(fit), Some(f)) if request.cost == CostMeasure::Seconds => {
+                let (fit, note) = model::calibrated_to_work(fit, f, |m, n| {
+                    p.work(m.round() as usize, n.round() as usize)
+                });
+                (Ok(fit), note)
+            }
+            (fit, _) => (fit, None),
+        };
         let mut rejected = None;
         match (&error_model, &cost_model) {
             (Err(err), _) => rejected = Some(format!("error model: {err}")),
@@ -657,6 +688,7 @@ fn plan_from<P: Plannable>(
             scheme: name,
             error_model: error_model.ok(),
             cost_model: cost_model.ok(),
+            cost_note,
             expected_orders: expected,
             stability_bound: bound,
             gci,
@@ -835,6 +867,8 @@ fn plan_from<P: Plannable>(
         base,
         rounds: vec![base],
         unconstrained: unsupported(&usable, request.target),
+        pilot_runs: pilots.len(),
+        pilots_cost: pilots.iter().map(|x| x.cost).sum(),
         pilots,
         schemes: summaries,
         decision,

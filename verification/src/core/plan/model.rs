@@ -149,6 +149,44 @@ pub fn fit_cost(size: &[f64], steps: &[f64], seconds: &[f64]) -> Result<CostMode
     fit_cost_model(size, steps, seconds, CONFIDENCE)
 }
 
+/// A timed cost model whose exponents fall short of the family's work by more than the
+/// planner's order tolerance ([`super::ORDER_TOLERANCE`], 30 %), beyond their confidence
+/// intervals, is overhead-dominated: the pilots are too short for their time to
+/// follow their work (per-run setup, allocation and cache effects of microsecond runs), and the
+/// power law would extrapolate that overhead to runs thousands of times larger (the rod's pilots
+/// measured t ∝ M^0.15 where its work is M·N; a seconds-mode plan then chose 1.9 × the oracle's
+/// time). Such a model is replaced by the work's own exponents (a_w, b_w) = ∂ ln W/∂ ln (M, N) at
+/// the finest pilot, its constant calibrated so that it passes through that pilot's time (the
+/// scheme's seconds per unit of work, where the overhead weighs least); the reason is returned.
+/// A model that grows as fast as the work or faster (e.g. a sparse factorization's fill) stands.
+pub fn calibrated_to_work(
+    fit: CostModelFit,
+    finest: (f64, f64, f64),
+    work: impl Fn(f64, f64) -> f64,
+) -> (CostModelFit, Option<String>) {
+    let (m, n, t) = finest;
+    let slope = |w2: f64| (w2 / work(m, n)).ln() / 2f64.ln();
+    let (a_w, b_w) = (slope(work(2.0 * m, n)), slope(work(m, 2.0 * n)));
+    // short of the work by more than the planner's order tolerance, beyond the interval
+    let below = |ci: (f64, f64), w: f64| ci.1 < (1.0 - super::ORDER_TOLERANCE) * w;
+    if !(below(fit.a_ci, a_w) || below(fit.b_ci, b_w)) || !(a_w.is_finite() && b_w.is_finite()) {
+        return (fit, None);
+    }
+    let why = format!(
+        "overhead-dominated pilot timings: t ∝ M^{:.2} N^{:.2} (a ∈ [{:.2}, {:.2}], b ∈ [{:.2}, {:.2}]) grows slower than the work ∝ M^{a_w:.2} N^{b_w:.2}; the work's exponents used, calibrated at the finest pilot ({m}, {n}): {t:.3e} s",
+        fit.a, fit.b, fit.a_ci.0, fit.a_ci.1, fit.b_ci.0, fit.b_ci.1
+    );
+    let calibrated = CostModelFit {
+        log_constant: t.ln() - a_w * m.ln() - b_w * n.ln(),
+        a: a_w,
+        a_ci: (a_w, a_w),
+        b: b_w,
+        b_ci: (b_w, b_w),
+        ..fit
+    };
+    (calibrated, Some(why))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -186,6 +224,49 @@ mod tests {
                 assert!((q - 2.0).abs() < 1e-9 && (c - 3.0).abs() < 1e-9 && residual_std < 1e-9)
             }
             other => panic!("{other:?}"),
+        }
+    }
+
+    /// The pilot grid (M₀/4 … M₀) × (N₀/4 … N₀) at (40, 20) with times `t(M, N)`.
+    fn timed(t: impl Fn(f64, f64) -> f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let (mut m, mut n, mut s) = (Vec::new(), Vec::new(), Vec::new());
+        for &mi in &[10.0, 20.0, 40.0] {
+            for &ni in &[5.0, 10.0, 20.0] {
+                m.push(mi);
+                n.push(ni);
+                s.push(t(mi, ni));
+            }
+        }
+        (m, n, s)
+    }
+
+    #[test]
+    fn overhead_dominated_timings_take_the_works_exponents_through_the_finest_pilot() {
+        // 2 µs of per-run overhead beside 1 ns per unit of work M·N: the fit's exponents fall
+        // far below 1; the calibrated model passes through the finest pilot with a = b = 1
+        let truth = |m: f64, n: f64| 2e-6 + 1e-9 * m * n * (1.0 + 0.01 * (m + n).sin());
+        let (m, n, t) = timed(truth);
+        let fit = fit_cost(&m, &n, &t).unwrap();
+        assert!(fit.a_ci.1 < 1.0, "{fit:?}");
+        let (c, why) = calibrated_to_work(fit, (40.0, 20.0, truth(40.0, 20.0)), |m, n| m * n);
+        assert!(why.is_some_and(|w| w.contains("overhead-dominated")));
+        assert_eq!((c.a, c.b), (1.0, 1.0));
+        assert!((c.predict(40.0, 20.0) / truth(40.0, 20.0) - 1.0).abs() < 1e-12);
+        // 100 times the work: above the truth by at most the finest pilot's time over its work
+        // part (the overhead counted as work), 2.8 µs / 0.8 µs
+        let ratio = c.predict(400.0, 200.0) / truth(400.0, 200.0);
+        let bound = truth(40.0, 20.0) / (1e-9 * 800.0);
+        assert!((1.0..=bound).contains(&ratio), "{ratio} ∉ [1, {bound}]");
+    }
+
+    #[test]
+    fn timings_that_grow_as_fast_as_the_work_or_faster_keep_their_fit() {
+        for a in [1.0, 1.4] {
+            let (m, n, t) = timed(|m, n| 1e-9 * m.powf(a) * n * (1.0 + 0.01 * (m * n).cos()));
+            let fit = fit_cost(&m, &n, &t).unwrap();
+            let (kept, why) = calibrated_to_work(fit.clone(), (40.0, 20.0, t[8]), |m, n| m * n);
+            assert!(why.is_none(), "a = {a}: {why:?}");
+            assert_eq!(kept, fit);
         }
     }
 }

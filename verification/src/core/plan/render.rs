@@ -112,6 +112,14 @@ impl PlanResult {
         )
     }
 
+    /// A cost in the request's unit, with the unit.
+    fn cost_text(&self, cost: f64) -> String {
+        match self.request.cost {
+            CostMeasure::Seconds => format!("{cost:.3e} CPU s"),
+            CostMeasure::Work => format!("{cost:.3e} work ({})", self.work_label),
+        }
+    }
+
     /// A Markdown summary: the request, the models, the decision and the run.
     pub fn markdown(&self) -> String {
         let mut s = format!(
@@ -136,6 +144,11 @@ impl PlanResult {
                 String::new()
             }
         );
+        s.push_str(&format!(
+            "The pilots of every round: {} runs, {} in all (the plan's own cost, beside the chosen run's).\n\n",
+            self.pilot_runs,
+            self.cost_text(self.pilots_cost)
+        ));
         s.push_str("| scheme | error model | cost model | expected (p, q) | stability bound | used |\n|---|---|---|---|---|---|\n");
         for m in &self.schemes {
             let cost = m.cost_model.as_ref().map_or("—".into(), |c| {
@@ -150,6 +163,10 @@ impl PlanResult {
                     c.b_ci.1
                 )
             });
+            let cost = match &m.cost_note {
+                Some(note) => format!("{cost}: {note}"),
+                None => cost,
+            };
             let o = |v: Option<f64>| v.map_or("—".into(), |x| format!("{x}"));
             s.push_str(&format!(
                 "| {} | {} | {} | ({}, {}) | {} | {} |\n",
