@@ -1032,3 +1032,54 @@ fn a_solver_failure_names_the_inputs_that_set_the_step_and_off_grid_times_name_t
         "{e}"
     );
 }
+
+#[test]
+fn an_exact_solution_beyond_doubles_names_the_rod_data_it_was_evaluated_with() {
+    // Found by the structural mutations (rod.final_time exchanged with rod.length, or
+    // rod.elasticity = 1e5): "the exact solution … is not finite at t = …" named no key.
+    let file = scene_file(
+        "exact-overflow",
+        "rod_paper_p0_2.toml",
+        &[("rod.elasticity", "1e5")],
+    );
+    let out = file.with_file_name("out");
+    let (o, _) = verify_child(&[
+        "scene",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("not finite") && err.contains("rod.elasticity = 100000"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_plane_body_without_its_load_names_the_traction_and_support_sections() {
+    // Found by the structural mutations (`traction: [0] dropped`): the step failure listed the
+    // material and contact keys but not what holds and loads the body.
+    let text = std::fs::read_to_string(root().join("examples/scenes/plane_paper_test_2d.toml"))
+        .unwrap();
+    let mut table: toml::Table = text.parse().unwrap();
+    table.remove("traction");
+    let dir = std::env::temp_dir().join(format!("contactlab-i34-traction-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("scene.toml");
+    std::fs::write(&file, toml::to_string(&table).unwrap()).unwrap();
+    let (o, _) = verify_child(&[
+        "scene",
+        file.to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("[[traction]] = 0 section(s)") && err.contains("[[dirichlet]] = 1 section(s)"),
+        "{err}"
+    );
+}

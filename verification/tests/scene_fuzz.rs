@@ -35,12 +35,13 @@ proptest! {
         let (path, c) = campaign();
         let b = base % c.base.len();
         let table = shrunk(path.parent().expect("a directory"), &c.base[b]).expect("the base");
-        let (text, _, mutations) = scene_text(&table, seed, b, index);
+        let scene = scene_text(&table, seed, b, index);
+        let mutations = scene.what.clone();
         let dir = std::env::temp_dir().join(format!("contactlab-scene-fuzz-{}", std::process::id()));
         let (outcome, message) = classify(
             run_scene,
             &dir,
-            text,
+            &scene,
             Duration::from_secs(5),
             Duration::from_secs(60),
         );

@@ -251,5 +251,13 @@ fn likely_inputs(f: &PlaneSceneFile, e: &contactlab::error::Error) -> String {
             }
         }
     }
+    // what holds and loads the body: a support or a load that is missing leaves the contact to
+    // carry (or to hold) everything
+    for (key, sections) in [
+        ("dirichlet", f.dirichlet.len()),
+        ("traction", f.traction.len()),
+    ] {
+        inputs.push((format!("[[{key}]]"), format!("{sections} section(s)")));
+    }
     clause(&inputs)
 }

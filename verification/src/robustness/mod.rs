@@ -168,18 +168,29 @@ struct SceneResult {
     stop: Option<StopTiming>,
 }
 
-/// A scene of the campaign: the base with its shrink values, mutated; with the mutated keys' last
-/// components and a description of the mutations.
-pub fn scene_text(
-    base: &toml::Table,
-    seed: u64,
-    b: usize,
-    index: usize,
-) -> (String, Vec<String>, String) {
+/// A mutated scene: its text, the files it refers to by a relative name (a mutated mesh,
+/// written beside it), the mutated keys' last components (what an error should name) and a
+/// description of the mutations.
+pub struct MutatedScene {
+    pub text: String,
+    pub files: Vec<(String, Vec<u8>)>,
+    pub keys: Vec<String>,
+    pub what: String,
+}
+
+/// The name a mutated mesh file is written under, beside the scene (and what an error about it
+/// should name: the file as the scene names it).
+pub const MUTATED_MESH: &str = "mutated.msh";
+
+/// A scene of the campaign: the base with its shrink values, mutated; now and then its mesh file
+/// mutated too ([`mutation::mutate_file`]: a copy written beside the scene, the scene pointed at
+/// it), and its ParaView series asked for (`output.vtk = true` where the scene has an
+/// `[output]`), so that the non-finite scan reads the `.vtu` files as well.
+pub fn scene_text(base: &toml::Table, seed: u64, b: usize, index: usize) -> MutatedScene {
     let mut doc = toml::Value::Table(base.clone());
     let mut rng = Rng::for_scene(seed, b, index);
-    let mutations = mutate(&mut doc, &mut rng);
-    let keys = mutations
+    let mut mutations = mutate(&mut doc, &mut rng);
+    let mut keys: Vec<String> = mutations
         .iter()
         .map(|m| {
             m.key
@@ -192,6 +203,19 @@ pub fn scene_text(
                 .to_string()
         })
         .collect();
+    let mut files = Vec::new();
+    if rng.below(4) == 0 {
+        if let Some((m, bytes)) = mutate_mesh_file(&mut doc, &mut rng) {
+            mutations.push(m);
+            keys.push(MUTATED_MESH.into());
+            files.push((MUTATED_MESH.to_string(), bytes));
+        }
+    }
+    if rng.below(4) == 0 {
+        if let Some(toml::Value::Table(out)) = doc.get_mut("output") {
+            out.insert("vtk".into(), toml::Value::Boolean(true));
+        }
+    }
     let what = mutations
         .iter()
         .map(|m| m.describe())
@@ -201,7 +225,59 @@ pub fn scene_text(
         toml::Value::Table(t) => toml::to_string(t).unwrap_or_default(),
         _ => String::new(),
     };
-    (text, keys, what)
+    MutatedScene {
+        text,
+        files,
+        keys,
+        what,
+    }
+}
+
+/// Every `file = "…"` of `v` (absolute after [`shrunk`]), by path.
+fn file_keys(v: &toml::Value, path: &mut Vec<mutation::Step>, out: &mut Vec<Vec<mutation::Step>>) {
+    match v {
+        toml::Value::Table(t) => {
+            for (k, x) in t {
+                path.push(mutation::Step::Key(k.clone()));
+                if k == "file" && x.is_str() {
+                    out.push(path.clone());
+                } else {
+                    file_keys(x, path, out);
+                }
+                path.pop();
+            }
+        }
+        toml::Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                path.push(mutation::Step::Index(i));
+                file_keys(x, path, out);
+                path.pop();
+            }
+        }
+        _ => {}
+    }
+}
+
+/// One of the scene's mesh files read, mutated and named [`MUTATED_MESH`] in the scene; None
+/// when the scene names no file (or it cannot be read: the scene then keeps its own).
+fn mutate_mesh_file(doc: &mut toml::Value, rng: &mut Rng) -> Option<(mutation::Mutation, Vec<u8>)> {
+    let mut paths = Vec::new();
+    file_keys(doc, &mut Vec::new(), &mut paths);
+    if paths.is_empty() {
+        return None;
+    }
+    let path = paths[rng.below(paths.len())].clone();
+    let slot = get_mut(doc, &path)?;
+    let bytes = std::fs::read(slot.as_str()?).ok()?;
+    let (mutated, what) = mutation::mutate_file(&bytes, rng);
+    *slot = toml::Value::String(MUTATED_MESH.into());
+    Some((
+        mutation::Mutation {
+            key: mutation::path_text(&path),
+            what: format!("its mesh {what}"),
+        },
+        mutated,
+    ))
 }
 
 /// The base scene with its shrink values applied.
@@ -258,6 +334,7 @@ fn run_one(
     runner: SceneRunner,
     dir: &Path,
     text: String,
+    files: &[(String, Vec<u8>)],
     limit: Duration,
     grace: Duration,
 ) -> Option<Answer> {
@@ -279,6 +356,11 @@ fn run_one(
     let file = dir.join("scene.toml");
     if std::fs::write(&file, text).is_err() {
         return Some((Err("cannot write the scene".into()), false, unmeasured));
+    }
+    for (name, bytes) in files {
+        if std::fs::write(dir.join(name), bytes).is_err() {
+            return Some((Err(format!("cannot write {name}")), false, unmeasured));
+        }
     }
     let out = dir.join("out");
     let (tx, rx) = mpsc::channel();
@@ -314,11 +396,12 @@ fn run_one(
 pub fn classify_timed(
     runner: SceneRunner,
     dir: &Path,
-    text: String,
+    scene: &MutatedScene,
     limit: Duration,
     grace: Duration,
 ) -> (Outcome, String, Option<StopTiming>) {
-    let Some((result, panicked, timing)) = run_one(runner, dir, text, limit, grace) else {
+    let answer = run_one(runner, dir, scene.text.clone(), &scene.files, limit, grace);
+    let Some((result, panicked, timing)) = answer else {
         return (Outcome::Hang, String::new(), None);
     };
     if panicked {
@@ -339,11 +422,11 @@ pub fn classify_timed(
 pub fn classify(
     runner: SceneRunner,
     dir: &Path,
-    text: String,
+    scene: &MutatedScene,
     limit: Duration,
     grace: Duration,
 ) -> (Outcome, String) {
-    let (o, m, _) = classify_timed(runner, dir, text, limit, grace);
+    let (o, m, _) = classify_timed(runner, dir, scene, limit, grace);
     (o, m)
 }
 
@@ -389,7 +472,7 @@ pub fn run(
     let mut base_checks = Vec::new();
     for (b, table) in c.base.iter().zip(&bases) {
         let text = toml::to_string(table).unwrap_or_default();
-        let answer = run_one(runner, &root.join("base"), text, limit, grace);
+        let answer = run_one(runner, &root.join("base"), text, &[], limit, grace);
         let (ran, message) = match answer {
             Some((Ok(summary), false, _)) => {
                 match outputs::first_non_finite(&root.join("base/out")) {
@@ -438,9 +521,10 @@ pub fn run(
                         let Some(&(b, index)) = work.get(w) else {
                             break;
                         };
-                        let (text, keys, mutations) = scene_text(&bases[b], c.seed, b, index);
+                        let scene = scene_text(&bases[b], c.seed, b, index);
                         let (outcome, message, stop) =
-                            classify_timed(runner, &dir, text, limit, grace);
+                            classify_timed(runner, &dir, &scene, limit, grace);
+                        let (keys, mutations) = (scene.keys, scene.what);
                         mine.push((
                             w,
                             SceneResult {

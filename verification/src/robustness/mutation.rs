@@ -264,11 +264,251 @@ fn mutate_value(v: &Value, rng: &mut Rng) -> (Option<Value>, String) {
     }
 }
 
-/// Applies 1 or 2 mutations to `scene` (a whole scene document).
+/// Every path to an array of tables (`body`, `contact_pair`, `sweep`, …).
+fn table_arrays(v: &Value, path: &mut Vec<Step>, out: &mut Vec<Vec<Step>>) {
+    match v {
+        Value::Table(t) => {
+            for (k, x) in t {
+                path.push(Step::Key(k.clone()));
+                table_arrays(x, path, out);
+                path.pop();
+            }
+        }
+        Value::Array(a) if !a.is_empty() && a.iter().all(Value::is_table) => {
+            out.push(path.clone());
+            for (i, x) in a.iter().enumerate() {
+                path.push(Step::Index(i));
+                table_arrays(x, path, out);
+                path.pop();
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Every path to a table with at least two numbers among its own keys (a plate's radii, a
+/// range's ends), with those keys.
+fn number_pairs(v: &Value, path: &mut Vec<Step>, out: &mut Vec<(Vec<Step>, Vec<String>)>) {
+    match v {
+        Value::Table(t) => {
+            let numbers: Vec<String> = t
+                .iter()
+                .filter(|(_, x)| x.is_float() || x.is_integer())
+                .map(|(k, _)| k.clone())
+                .collect();
+            if numbers.len() >= 2 {
+                out.push((path.clone(), numbers));
+            }
+            for (k, x) in t {
+                path.push(Step::Key(k.clone()));
+                number_pairs(x, path, out);
+                path.pop();
+            }
+        }
+        Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                path.push(Step::Index(i));
+                number_pairs(x, path, out);
+                path.pop();
+            }
+        }
+        _ => {}
+    }
+}
+
+/// A mutation of the scene's structure, as the multi-body and mesh scenes invite: a table of an
+/// array repeated (a duplicate body, pair or region: the same name twice, two bodies in one
+/// place) or dropped (a pair naming a body that is gone), two numbers of one table exchanged (a
+/// plate's inner radius above its outer one, a range run backwards), or one name written where
+/// another belongs (a pair's master = its slave, a group name of another body). None when the
+/// scene has nothing of the kind drawn.
+fn mutate_structure(scene: &mut Value, rng: &mut Rng) -> Vec<Mutation> {
+    match rng.below(3) {
+        0 => {
+            let mut arrays = Vec::new();
+            table_arrays(scene, &mut Vec::new(), &mut arrays);
+            if arrays.is_empty() {
+                return Vec::new();
+            }
+            let path = rng.pick(&arrays).clone();
+            let repeat = rng.below(2) == 0;
+            let Some(Value::Array(a)) = get_mut(scene, &path) else {
+                return Vec::new();
+            };
+            let i = rng.below(a.len());
+            let what = if repeat {
+                let copy = a[i].clone();
+                a.push(copy);
+                format!("[{i}] repeated as [{}]", a.len() - 1)
+            } else {
+                a.remove(i);
+                format!("[{i}] dropped")
+            };
+            vec![Mutation {
+                key: path_text(&path),
+                what,
+            }]
+        }
+        1 => {
+            let mut tables = Vec::new();
+            number_pairs(scene, &mut Vec::new(), &mut tables);
+            if tables.is_empty() {
+                return Vec::new();
+            }
+            let (path, keys) = rng.pick(&tables).clone();
+            let i = rng.below(keys.len());
+            let j = (i + 1 + rng.below(keys.len() - 1)) % keys.len();
+            let Some(Value::Table(t)) = get_mut(scene, &path) else {
+                return Vec::new();
+            };
+            let (a, b) = (t[&keys[i]].clone(), t[&keys[j]].clone());
+            t.insert(keys[i].clone(), b);
+            t.insert(keys[j].clone(), a);
+            let at = |k: &String| {
+                let mut p = path.clone();
+                p.push(Step::Key(k.clone()));
+                path_text(&p)
+            };
+            let (ki, kj) = (at(&keys[i]), at(&keys[j]));
+            vec![
+                Mutation {
+                    key: ki.clone(),
+                    what: format!("exchanged with {kj}"),
+                },
+                Mutation {
+                    key: kj,
+                    what: format!("exchanged with {ki}"),
+                },
+            ]
+        }
+        _ => {
+            let mut paths = Vec::new();
+            leaves(scene, &mut Vec::new(), &mut paths);
+            let strings: Vec<Vec<Step>> = paths
+                .into_iter()
+                .filter(|p| {
+                    get_mut(scene, p).is_some_and(|v| v.is_str())
+                        && !matches!(p.first(), Some(Step::Key(k)) if k == "model" || k == "title")
+                })
+                .collect();
+            if strings.len() < 2 {
+                return Vec::new();
+            }
+            let from = rng.pick(&strings).clone();
+            let Some(value) = get_mut(scene, &from).cloned() else {
+                return Vec::new();
+            };
+            // a name written where another one was: only slots that held something else
+            let others: Vec<Vec<Step>> = strings
+                .into_iter()
+                .filter(|p| get_mut(scene, p).is_some_and(|v| *v != value))
+                .collect();
+            if others.is_empty() {
+                return Vec::new();
+            }
+            let to = rng.pick(&others).clone();
+            let Some(slot) = get_mut(scene, &to) else {
+                return Vec::new();
+            };
+            *slot = value.clone();
+            vec![Mutation {
+                key: path_text(&to),
+                what: format!("= {value} (the value of {})", path_text(&from)),
+            }]
+        }
+    }
+}
+
+/// A file's bytes mutated as a careless user or a broken disk would leave them: cut short,
+/// binary garbage written over 64 bytes, a line repeated or dropped, a number replaced by one
+/// that is not (`nan`, `1e400`) or out of place (`-1`, `0`, `99999999999`).
+pub fn mutate_file(bytes: &[u8], rng: &mut Rng) -> (Vec<u8>, String) {
+    let mut b = bytes.to_vec();
+    if b.is_empty() {
+        return (b, "empty".into());
+    }
+    let lines: Vec<(usize, usize)> = {
+        let mut out = Vec::new();
+        let mut start = 0;
+        for (i, &c) in b.iter().enumerate() {
+            if c == b'\n' {
+                out.push((start, i + 1));
+                start = i + 1;
+            }
+        }
+        if start < b.len() {
+            out.push((start, b.len()));
+        }
+        out
+    };
+    match rng.below(5) {
+        0 => {
+            let at = rng.below(b.len());
+            b.truncate(at);
+            (b, format!("cut at byte {at} of {}", bytes.len()))
+        }
+        1 => {
+            let at = rng.below(b.len());
+            for x in b.iter_mut().skip(at).take(64) {
+                *x = (rng.next_u64() & 0xff) as u8;
+            }
+            (b, format!("64 bytes of binary garbage from byte {at}"))
+        }
+        2 => {
+            let (s, e) = *rng.pick(&lines);
+            let line = b[s..e].to_vec();
+            b.splice(e..e, line);
+            (b, format!("a line repeated (bytes {s}–{e})"))
+        }
+        3 => {
+            let (s, e) = *rng.pick(&lines);
+            b.drain(s..e);
+            (b, format!("a line dropped (bytes {s}–{e})"))
+        }
+        _ => {
+            let numbers: Vec<(usize, usize)> = {
+                let mut out = Vec::new();
+                let mut i = 0;
+                while i < b.len() {
+                    if b[i].is_ascii_digit() && (i == 0 || b[i - 1].is_ascii_whitespace()) {
+                        let s = i;
+                        while i < b.len() && !b[i].is_ascii_whitespace() {
+                            i += 1;
+                        }
+                        out.push((s, i));
+                    }
+                    i += 1;
+                }
+                out
+            };
+            if numbers.is_empty() {
+                return (b, "unchanged (no number)".into());
+            }
+            let (s, e) = *rng.pick(&numbers);
+            let choices: Vec<&str> = ["nan", "1e400", "-1", "0", "99999999999"]
+                .into_iter()
+                .filter(|c| c.as_bytes() != &b[s..e])
+                .collect();
+            let new = *rng.pick(&choices);
+            b.splice(s..e, new.bytes());
+            (b, format!("the number at byte {s} replaced by {new}"))
+        }
+    }
+}
+
+/// Applies 1 or 2 mutations to `scene` (a whole scene document); now and then one of them is a
+/// mutation of its structure ([`mutate_structure`]).
 pub fn mutate(scene: &mut Value, rng: &mut Rng) -> Vec<Mutation> {
     let mut out = Vec::new();
     let count = 1 + rng.below(2);
     for _ in 0..count {
+        if rng.below(6) == 0 {
+            let structural = mutate_structure(scene, rng);
+            if !structural.is_empty() {
+                out.extend(structural);
+                continue;
+            }
+        }
         let mut paths = Vec::new();
         leaves(scene, &mut Vec::new(), &mut paths);
         if paths.is_empty() {
@@ -344,5 +584,74 @@ mod tests {
             assert!(!ma.is_empty());
         }
         assert_eq!(path_text(&parse_path("sweep[0].points")), "sweep[0].points");
+    }
+
+    fn bodies() -> Value {
+        toml::from_str::<toml::Table>(
+            "model = \"multibody\"\n[[body]]\nname = \"a\"\n[body.shape]\ninner_radius = 0.2\nouter_radius = 1.0\n\
+             [[body]]\nname = \"b\"\n[[contact_pair]]\nslave = \"a\"\nmaster = \"b\"\n",
+        )
+        .map(Value::Table)
+        .unwrap()
+    }
+
+    #[test]
+    fn structural_mutations_repeat_drop_exchange_and_cross_names() {
+        // over many draws every kind appears on a scene of bodies and pairs, and each changes it
+        let mut seen = [false; 4];
+        for index in 0..400 {
+            let mut doc = bodies();
+            let ms = mutate_structure(&mut doc, &mut Rng::for_scene(3, 0, index));
+            if ms.is_empty() {
+                continue;
+            }
+            assert_ne!(doc.to_string(), bodies().to_string(), "{ms:?}");
+            let what = &ms[0].what;
+            seen[0] |= what.contains("repeated");
+            seen[1] |= what.contains("dropped");
+            seen[2] |= what.contains("exchanged with body[0].shape.");
+            seen[3] |= what.contains("(the value of");
+        }
+        assert_eq!(seen, [true; 4]);
+        // the plate's radii exchanged: inner above outer
+        let mut doc = bodies();
+        let mut rng = Rng::for_scene(3, 0, 0);
+        let mut found = false;
+        for _ in 0..200 {
+            let ms = mutate_structure(&mut doc, &mut rng);
+            if ms.len() == 2 {
+                let shape = &doc["body"][0]["shape"];
+                found = shape["inner_radius"].as_float() == Some(1.0)
+                    && shape["outer_radius"].as_float() == Some(0.2);
+                break;
+            }
+            doc = bodies();
+        }
+        assert!(found);
+    }
+
+    #[test]
+    fn file_mutations_cut_garble_repeat_drop_and_replace_numbers() {
+        let mesh = b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n";
+        let mut kinds = std::collections::BTreeSet::new();
+        for index in 0..200 {
+            let mut rng = Rng::for_scene(5, 1, index);
+            let (a, what) = mutate_file(mesh, &mut rng);
+            let (b, again) = mutate_file(mesh, &mut Rng::for_scene(5, 1, index));
+            assert_eq!((a.clone(), what.clone()), (b, again), "reproducible");
+            if !what.starts_with("64 bytes") {
+                // garbage may happen to rewrite a byte with itself; every other kind changes it
+                assert_ne!(a.as_slice(), mesh.as_slice(), "{what}");
+            }
+            kinds.insert(
+                what.split_whitespace()
+                    .take(2)
+                    .collect::<Vec<_>>()
+                    .join(" "),
+            );
+        }
+        for k in ["cut at", "64 bytes", "a line", "the number"] {
+            assert!(kinds.iter().any(|x| x.starts_with(k)), "{k} in {kinds:?}");
+        }
     }
 }

@@ -24,6 +24,10 @@ pub fn first_non_finite(dir: &Path) -> Option<String> {
             if let Some(p) = null_at(&v, "") {
                 return Some(format!("{name}: null (a non-finite number) at {p}"));
             }
+        } else if name.ends_with(".vtu") {
+            if let Some(w) = vtu_non_finite(&path) {
+                return Some(format!("{name}: {w}"));
+            }
         } else if name.ends_with(".svg")
             && (text.contains("NaN") || text.contains("=\"inf") || text.contains("=\"-inf"))
         {
@@ -49,4 +53,39 @@ fn null_at(v: &serde_json::Value, at: &str) -> Option<String> {
         }),
         _ => None,
     }
+}
+
+/// The first non-finite number of a `.vtu` file (points or any Float64/Float32 data array), read
+/// back with vtkio — the arrays are base64 binary, so a text scan cannot see them; a file vtkio
+/// cannot read is reported too.
+fn vtu_non_finite(path: &Path) -> Option<String> {
+    use vtkio::model::{Attribute, DataSet};
+    let vtk = match vtkio::Vtk::import(path) {
+        Ok(v) => v,
+        Err(e) => return Some(format!("not a readable VTK file ({e})")),
+    };
+    let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
+        return None;
+    };
+    for piece in pieces {
+        let Ok(p) = piece.into_loaded_piece_data(None) else {
+            return Some("a piece vtkio cannot load".into());
+        };
+        let bad = |b: &vtkio::IOBuffer| {
+            b.clone()
+                .cast_into::<f64>()
+                .is_some_and(|v| v.iter().any(|x| !x.is_finite()))
+        };
+        if bad(&p.points) {
+            return Some("a point that is not finite".into());
+        }
+        for a in p.data.point.iter().chain(&p.data.cell) {
+            if let Attribute::DataArray(d) = a {
+                if bad(&d.data) {
+                    return Some(format!("NaN or ∞ in the array {}", d.name));
+                }
+            }
+        }
+    }
+    None
 }

@@ -118,7 +118,14 @@ pub fn write_scene(scene: &RodScene, source: &str, out: &Path) -> Result<String,
         let errs = SceneErrors {
             exact_solution: ex.name().to_string(),
             source: ex.source().to_string(),
-            errors: obs.checked_errors().map_err(|e| format!("{source}: {e}"))?,
+            errors: obs.checked_errors().map_err(|e| {
+                // the closed form was evaluated with the scene's data: name them as written
+                let p = &scene.problem;
+                format!(
+                    "{source}: {e} (evaluated with rod.length = {}, rod.final_time = {}, rod.viscosity = {}, rod.elasticity = {} and the [foundation]: the closed form's exponentials in t·elasticity/viscosity leave the range of doubles when that product is large)",
+                    p.length, p.final_time, p.viscosity, p.elasticity
+                )
+            })?,
         };
         summary.push_str(&format!(
             "; paper E = {:.6e} against {}",
