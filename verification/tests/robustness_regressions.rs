@@ -1061,8 +1061,8 @@ fn an_exact_solution_beyond_doubles_names_the_rod_data_it_was_evaluated_with() {
 fn a_plane_body_without_its_load_names_the_traction_and_support_sections() {
     // Found by the structural mutations (`traction: [0] dropped`): the step failure listed the
     // material and contact keys but not what holds and loads the body.
-    let text = std::fs::read_to_string(root().join("examples/scenes/plane_paper_test_2d.toml"))
-        .unwrap();
+    let text =
+        std::fs::read_to_string(root().join("examples/scenes/plane_paper_test_2d.toml")).unwrap();
     let mut table: toml::Table = text.parse().unwrap();
     table.remove("traction");
     let dir = std::env::temp_dir().join(format!("contactlab-i34-traction-{}", std::process::id()));

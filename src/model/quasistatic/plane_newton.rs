@@ -60,6 +60,9 @@ pub enum NewtonFailure {
     },
     Singular(SolveError),
     NonFinite,
+    /// The run's stop request ([`crate::run_control::check`]) at an iteration: a step of a large
+    /// mesh can take many seconds of iterations, each checks.
+    Stopped(SolveError),
 }
 
 impl NewtonStep {
@@ -212,6 +215,8 @@ impl NewtonStep {
     ) -> Result<usize, NewtonFailure> {
         let norm = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         for it in 0..=params.max_iterations {
+            crate::run_control::check(|| format!("Newton iteration {it}"))
+                .map_err(NewtonFailure::Stopped)?;
             let scale = self.assemble(problem, dofs, u_prev, w, theta_k, load, tau, true);
             let r0 = norm(&self.res);
             if !r0.is_finite() {

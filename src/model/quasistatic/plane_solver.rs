@@ -417,6 +417,16 @@ impl PlaneSolver {
                                 tolerance: self.params.newton.relative_tolerance.max(floor),
                             },
                             NewtonFailure::Singular(e) => e,
+                            NewtonFailure::Stopped(SolveError::Stopped { at, reason }) => {
+                                SolveError::Stopped {
+                                    at: format!(
+                                        "step {n} of {} (t = {t}), {at}",
+                                        self.grid.steps()
+                                    ),
+                                    reason,
+                                }
+                            }
+                            NewtonFailure::Stopped(e) => e,
                             NewtonFailure::NonFinite => SolveError::NonFinite {
                                 step: n,
                                 time: t,
