@@ -17,6 +17,9 @@
 //!   W_design is the pilot design's work computed here from docs/planner.md §2 (the levels
 //!   (M₀/4, M₀/2, M₀) × (N₀/4, N₀/2, N₀) of each round, every stable scheme) — a planner that
 //!   runs more pilots than its design, or pays for them twice, fails it;
+//! - aim: the achieved error over the target at most AIM × exp(3σ) (AIM = 0.85, σ the chosen
+//!   scheme's error-model log residual at its pilots): a planner that chose for the target
+//!   itself lands near 1 and fails it, where the [0.5, 1] band of `rod_plan` lets it pass;
 //! - rounds: the pilot rounds run at most those the oracle's point needs — one when it lies in
 //!   the first round's box, two otherwise ([`rounds_needed`]); a planner that picks a dearer
 //!   scheme than its models' cheapest recovers its target through extra rounds, and fails here;
@@ -29,7 +32,7 @@ use serde::Deserialize;
 
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::plan::case::PlanSpec;
-use crate::core::plan::choose::{EXTRAPOLATION, STABILITY_MARGIN};
+use crate::core::plan::choose::{AIM, EXTRAPOLATION, STABILITY_MARGIN};
 use crate::core::plan::{
     pilot_levels, plan, CostMeasure, Decision, PlanRequest, PlanResult, Plannable,
 };
@@ -236,6 +239,26 @@ fn work_bills<P: Plannable>(
             o.max_cost_ratio,
         ),
     ];
+    // the aim: the planner chooses for AIM × target, so its run lands there within its error
+    // model's scatter at the pilots (3 σ of the log residual)
+    let sigma = r
+        .schemes
+        .iter()
+        .find(|x| x.scheme == scheme)
+        .and_then(|x| x.error_model.as_ref())
+        .map_or(f64::INFINITY, |e| e.residual_std());
+    let achieved = r
+        .executed
+        .as_ref()
+        .map(|x| x.achieved_error)
+        .ok_or("a chosen plan without its run")?;
+    checks.push(Check::at_most(
+        &format!(
+            "target {t:.1e}: achieved / target, against the aim {AIM} × exp(3 σ), σ = {sigma:.2e} the chosen scheme's log residual at its pilots"
+        ),
+        achieved / t,
+        AIM * (3.0 * sigma).exp(),
+    ));
     let needed = rounds_needed(r, best);
     checks.push(Check::at_most(
         &format!(
