@@ -5,7 +5,7 @@
 //! k = h/c, single pass, Lagrange multipliers). Goal: (1) Newmark with multipliers, whose energy
 //! rises to ≈ 3 E₀ at M = 40 (docs/multibody.md §3.2), fails the recomputed energy bound that a
 //! conserving run is gated with; (2) records that book an energy gain as activation work, flip
-//! the sign of the activation work, or carry a wrong sign of P or K fail the comparison of the
+//! the sign of the activation work (with or without W_N), or carry a wrong sign of P or K fail the comparison of the
 //! records with the state, while the same run's unaltered records pass it; (3) multipliers of the
 //! wrong sign at an activation, or a force left on a released constraint, fail the sign laws.
 
@@ -194,6 +194,22 @@ fn a_flipped_sign_of_the_activation_work_fails_the_record_comparison() {
         "activation sign flipped: W records/state {:.3e}",
         a.work_record_ratio
     );
+    assert!(a.work_record_ratio > 1e6, "{a:?}");
+}
+
+#[test]
+fn activation_work_booked_with_the_wrong_sign_alone_fails_the_set_change_comparison() {
+    // W_N intact, only its set changes' part flipped (the solver's booking of
+    // `activation_work`, mutated): the record's total agrees with the state, the split does not
+    let solver = bars(20, MultibodyScheme::EnergyMomentum, true);
+    let kept = keep(&solver);
+    let clean = replay(&solver, &kept, |_, _| {});
+    let a = replay(&solver, &kept, |_, r| r.activation_work = -r.activation_work);
+    eprintln!(
+        "activation split flipped: W records/state {:.3e} (clean {:.3e})",
+        a.work_record_ratio, clean.work_record_ratio
+    );
+    assert!(clean.work_record_ratio <= 1.0, "{clean:?}");
     assert!(a.work_record_ratio > 1e6, "{a:?}");
 }
 

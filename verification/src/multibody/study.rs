@@ -176,7 +176,10 @@ pub fn audit_checks(label: &str, s: &MultibodySummary, claims: Claims) -> Vec<Ch
             1.0,
         ));
     }
-    if claims.friction_sign {
+    // a run whose friction did no work at all (a frictionless pair, or friction never acted)
+    // has the ratio 0 identically: not applicable there, left out of the counts (a bug that
+    // books friction work where there is none makes it nonzero, and the check is back)
+    if claims.friction_sign && (s.friction_work != 0.0 || s.friction_ratio != 0.0) {
         checks.push(Check::at_most(
             &format!("{label}: max_n step friction work / tolerance (≤ 0 up to round-off)"),
             s.friction_ratio,

@@ -107,6 +107,12 @@ struct StepWorks {
     /// The penalty's jump where no segment changed (not booked, not allowed): part of the
     /// recomputed identity all the same.
     penalty_unbooked: f64,
+    /// The set changes' part of W_N, the record's activation + switch work: the work of every
+    /// constraint active at t_n that was not held on the same segment at t_{n−1} (entries,
+    /// re-pairings, held nodes' switches), with the penalty's booked jumps.
+    set_change: f64,
+    /// Σ |λ (g₁ − g₀)| of the constraints whose switch inside the step the state cannot show.
+    set_change_unseen: f64,
 }
 
 /// The auditor: feed it every step's view ([`Self::observe`]), then [`Self::finish`].
@@ -312,6 +318,8 @@ impl<'a> StateAuditor<'a> {
         let f_t = floor(w.friction_terms, w.friction_magnitude);
         let ratios = [
             (rec.normal_work - w.normal).abs() / f_n,
+            (rec.activation_work + rec.switch_work - w.set_change).abs()
+                / (f_n + w.set_change_unseen),
             (rec.friction_work - w.friction).abs() / f_t,
             (rec.external_work - w_ext).abs() / ext_floor,
         ];
@@ -425,6 +433,15 @@ impl StateAuditor<'_> {
             };
             let lambda = c.lambda_n;
             let work = lambda * (g1 - g0);
+            // the state shows a set change for an active constraint not held on the same
+            // segment; for the others (inactive at t_n, or held on the same segment at both
+            // ends) it cannot tell a switch inside the step from none: their |work| bounds
+            // what the record may book as set-change work beyond ours
+            if c.active && !(same && before.is_some_and(|b| b.active)) {
+                w.set_change += work;
+            } else {
+                w.set_change_unseen += work.abs();
+            }
             let gaps = lambda.abs() * (g0.abs() + g1.abs() + GAP_ROUNDING * sz);
             w.normal += work;
             w.magnitude += work.abs();
@@ -477,6 +494,7 @@ impl StateAuditor<'_> {
         let jump = p_new - p_old;
         if penalty_switched && jump != 0.0 {
             w.normal += jump;
+            w.set_change += jump;
             w.magnitude += p_new.abs() + p_old.abs();
             w.terms += contacts.len() + prev.contacts.len();
             w.allowed += jump.max(0.0);
@@ -506,8 +524,8 @@ pub fn state_audit_checks(label: &str, a: &StateAudit, claims: Claims) -> Vec<Ch
         ),
         Check::at_most(
             &format!(
-                "{label}: max_n |W_N, W_T, W_ext (record) − recomputed from λ, gaps, f·d| / \
-                 round-off floor"
+                "{label}: max_n |W_N, its set changes' part, W_T, W_ext (record) − recomputed \
+                 from λ, gaps, f·d| / round-off floor"
             ),
             a.work_record_ratio,
             1.0,
