@@ -204,7 +204,9 @@ fn activation_work_booked_with_the_wrong_sign_alone_fails_the_set_change_compari
     let solver = bars(20, MultibodyScheme::EnergyMomentum, true);
     let kept = keep(&solver);
     let clean = replay(&solver, &kept, |_, _| {});
-    let a = replay(&solver, &kept, |_, r| r.activation_work = -r.activation_work);
+    let a = replay(&solver, &kept, |_, r| {
+        r.activation_work = -r.activation_work
+    });
     eprintln!(
         "activation split flipped: W records/state {:.3e} (clean {:.3e})",
         a.work_record_ratio, clean.work_record_ratio

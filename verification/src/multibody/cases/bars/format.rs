@@ -226,14 +226,29 @@ pub struct CeilingSpec {
     pub note: String,
 }
 
-/// `[[duration]]`: on every level |T_c − (t_end − t_start)| ≤ steps · k.
+/// `[[duration]]`: on every level |T_c − (t_end − t_start)| / k ≤ widths · s_A + 1, s_A the
+/// Airy width of the returning front in steps ([`airy_width_steps`]) and 1 the step's
+/// quantization of the release.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DurationSpec {
     pub sweep: String,
     pub family: String,
-    pub steps: f64,
+    pub airy_widths: f64,
     pub note: String,
+}
+
+/// The width, in steps, of a front that travelled for `t` on P1 elements of size h with the
+/// consistent mass and the midpoint rule at step k (docs/multibody.md, "the release").
+///
+/// The discrete dispersion relation: the consistent mass gives ω_h = cκ (1 + (κh)²/24 + …), the
+/// midpoint rule ω = ω_h (1 − (ω_h k)²/12 + …), so ω = cκ − β κ³ with β = c h² (2C² − 1)/24,
+/// C = ck/h. A jump carried for a time t becomes ∫ Ai over the width (3 |β| t)^{1/3}; in steps
+/// s_A = (3 |β| t)^{1/3} / (c k). (At C = 1: s_A = (c t/(8h))^{1/3}.)
+pub fn airy_width_steps(c: f64, h: f64, k: f64, t: f64) -> f64 {
+    let courant = c * k / h;
+    let beta = c * h * h * (2.0 * courant * courant - 1.0).abs() / 24.0;
+    (3.0 * beta * t).cbrt() / (c * k)
 }
 
 /// `[[prediction]]`: the finest error ≤ factor × C h_f^p, C fitted (in the log) on the coarser
@@ -451,7 +466,7 @@ impl BarsCase {
         }
         for (i, d) in self.durations.iter().enumerate() {
             known("duration", i, &d.sweep, &d.family)?;
-            positive(path, &format!("duration[{i}].steps"), d.steps)?;
+            positive(path, &format!("duration[{i}].airy_widths"), d.airy_widths)?;
         }
         for (i, w) in self.withins.iter().enumerate() {
             known("within", i, &w.sweep, &w.family)?;

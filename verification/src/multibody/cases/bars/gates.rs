@@ -4,7 +4,7 @@
 
 use crate::core::gate::{Check, GateVerdict};
 use crate::multibody::audit_state::{state_audit_checks, state_audit_gate};
-use crate::multibody::cases::bars::format::BarsCase;
+use crate::multibody::cases::bars::format::{airy_width_steps, BarsCase};
 use crate::multibody::cases::bars::run::{parameter, series, Outcome};
 use crate::multibody::study::{audit_checks, audit_gate, Claims};
 
@@ -61,13 +61,15 @@ pub fn gates(file: &BarsCase, outcomes: &[Outcome]) -> Vec<GateVerdict> {
                 let exact = conf.exact(file.families[o.job.family].material(&file.material).young);
                 let tc = exact.contact_end() - exact.contact_start();
                 let measured = o.measured.end - o.measured.start;
+                let h = conf.striker_length / o.level.elements as f64;
+                let s_a = airy_width_steps(exact.wave_speed(), h, o.k, tc);
                 Check::at_most(
                     &format!(
-                        "M = {}: |T_c − {tc:.6}| / k (T_c = {measured:.6}, k = {:.3e})",
-                        o.level.elements, o.k
+                        "M = {}: |T_c − {tc:.6}| / k (T_c = {measured:.6}, k = {:.3e}; ≤ {} Airy widths s_A = {s_a:.3} + 1 step)",
+                        o.level.elements, o.k, d.airy_widths
                     ),
                     (measured - tc).abs() / o.k,
-                    d.steps,
+                    d.airy_widths * s_a + 1.0,
                 )
             })
             .collect();
