@@ -320,6 +320,10 @@ pub struct AuditSummary {
     pub drift_ratio_3_7: f64,
     pub friction_work_ratio: f64,
     pub constraint_work_ratio: f64,
+    /// The steps whose friction work W_τ, and whose constraint work D_b, is not exactly 0: where
+    /// both are 0 the sign laws have nothing to test (a frictionless run, no stage (b)).
+    pub friction_steps: usize,
+    pub constraint_steps: usize,
 }
 
 impl AuditSummary {
@@ -359,6 +363,8 @@ impl AuditSummary {
             drift_ratio_3_7: max(self.drift_ratio_3_7, other.drift_ratio_3_7),
             friction_work_ratio: max(self.friction_work_ratio, other.friction_work_ratio),
             constraint_work_ratio: max(self.constraint_work_ratio, other.constraint_work_ratio),
+            friction_steps: self.friction_steps + other.friction_steps,
+            constraint_steps: self.constraint_steps + other.constraint_steps,
         }
     }
 }
@@ -429,6 +435,8 @@ impl EnergyAudit {
             s.max_drift_1_48 = s.max_drift_1_48.max(r.drift_1_48.abs() / scale);
             s.max_drift_1_49 = s.max_drift_1_49.max(r.drift_1_49.abs() / scale);
             s.max_drift_3_7 = s.max_drift_3_7.max(r.drift_3_7.abs() / scale);
+            s.friction_steps += usize::from(r.step_friction_work != 0.0);
+            s.constraint_steps += usize::from(r.step_constraint_work != 0.0);
             s.max_step_friction_work = s.max_step_friction_work.max(r.step_friction_work);
             s.max_step_constraint_work = s.max_step_constraint_work.max(r.step_constraint_work);
             // the gated ratios: each drift against its tolerance, each step work against
