@@ -270,8 +270,8 @@ impl<'a> StateAuditor<'a> {
         f
     }
 
-    /// Φ = Σ w (r/2) p_+², its floor, and the penetrations.
-    fn penalty(&self, u: &[f64]) -> (f64, f64, Vec<f64>) {
+    /// Φ = Σ w (r/2) p_+², the magnitude of its terms, its floor, and the penetrations.
+    fn penalty(&self, u: &[f64]) -> (f64, f64, f64, Vec<f64>) {
         let level = self.spec.foundation.as_ref().map_or(0.0, |f| f.level);
         let r = self
             .spec
@@ -292,7 +292,7 @@ impl<'a> StateAuditor<'a> {
                 p
             })
             .collect();
-        (phi, floor(self.nodes.len(), size), p)
+        (phi, size, floor(self.nodes.len(), size), p)
     }
 
     fn step(&mut self, view: &StepView<'_>) -> Result<(), String> {
@@ -305,7 +305,7 @@ impl<'a> StateAuditor<'a> {
             u,
             v,
         )?;
-        let (phi, phi_floor, p) = self.penalty(u);
+        let (phi, phi_size, phi_floor, p) = self.penalty(u);
         let energy = s.kinetic + s.stored;
         let total = energy + phi;
         let total_floor = self.compare_state(&s, phi, phi_floor, rec);
@@ -330,7 +330,7 @@ impl<'a> StateAuditor<'a> {
             });
             return Ok(());
         };
-        let scale = s.kinetic_size + s.stored_size + phi_floor / (C * f64::EPSILON);
+        let scale = s.kinetic_size + s.stored_size + phi_size;
         let newton = rec.newton_work + C * f64::EPSILON * (scale + rec.stiffness_work);
         let w = self.works(&prev, view, &p, u);
         self.compare_works(&w, rec);
