@@ -9,7 +9,8 @@
 //! work of the wrong sign, or a Φ booked with the wrong weights (or with r instead of r/2) fail
 //! the comparison of the records with the state; (3) a friction force or a multiplier of the
 //! wrong sign fail the sign laws on the recomputed works, and a velocity state with energy that no
-//! work supplied fails the recomputed identities.
+//! work supplied fails the recomputed identities; (4) the lumped mass is recomputed as lumped, and
+//! an auditor reading the other mass kind fails K.
 
 use std::sync::Arc;
 
@@ -252,4 +253,41 @@ fn an_energy_no_work_supplied_fails_the_recomputed_identities() {
     assert!(a.identity_1_48_ratio > 1.0, "{a:?}");
     assert!(a.identity_1_49_ratio > 1.0, "{a:?}");
     assert!(a.energy_rise_ratio > 1.0, "{a:?}");
+}
+
+/// The kinetic-energy ratio of an auditor that reads the other mass kind than the scene's.
+fn kinetic_ratio_with_the_other_mass(scene: &DynamicScene, body: &PlaneBody, kept: &Kept) -> f64 {
+    let mut spec = AuditSpec::of_scene(&scene.file).unwrap();
+    spec.lumped = !spec.lumped;
+    let mut auditor = StateAuditor::new(body, &scene.problem, spec).unwrap();
+    for (step, time, u, v, forces, record) in kept {
+        auditor.observe(&StepView {
+            step: *step,
+            time: *time,
+            displacement: u,
+            velocity: v,
+            forces,
+            record,
+        });
+    }
+    auditor.finish().unwrap().kinetic_ratio
+}
+
+#[test]
+fn a_lumped_mass_is_recomputed_as_lumped_and_the_wrong_mass_kind_fails_the_kinetic_record() {
+    // the same disk with the lumped (row-sum) mass: its run passes; an auditor that assembles
+    // the consistent mass instead fails K, and one assembling the lumped mass for the
+    // consistent run too
+    let lumped = SCENE.replace("density = 1000.0", "density = 1000.0\nmass = \"lumped\"");
+    let scene = DynamicScene::from_toml_str(&lumped, "dynamic_state_audit (lumped)").unwrap();
+    let SceneBody::Plane(body) = &scene.body else {
+        panic!("a plane body")
+    };
+    let kept = keep(&scene);
+    let a = replay(&scene, body, &kept, |_, _, _, _| {});
+    assert!(failed(&scene, &a).is_empty(), "{a:?}");
+    assert!(kinetic_ratio_with_the_other_mass(&scene, body, &kept) > 1.0);
+    let (consistent, body) = self::scene();
+    let kept = keep(&consistent);
+    assert!(kinetic_ratio_with_the_other_mass(&consistent, &body, &kept) > 1.0);
 }
