@@ -17,6 +17,7 @@
 //!
 //! [`study`] holds what every kind shares: the audited run, its plots and gates.
 
+pub mod audit_state;
 pub mod cases;
 pub mod errors;
 pub mod plan;

@@ -7,6 +7,8 @@
 //!   `plane_laws`, `normal_response`: the constitutive laws and the contact laws (2.7)–(2.9)
 //!   written independently of the solver's, from which alone the plane data are built.
 //! - `dynamic_plane`: plane-strain elastodynamics with normal compliance.
+//! - `strain_energy`: the stored energies of the plane-strain laws, for the audits recomputed from
+//!   the state (multibody, dynamic).
 
 pub mod dynamic_plane;
 pub mod normal_response;
@@ -14,3 +16,4 @@ pub mod plane;
 pub mod plane_fields;
 pub mod plane_laws;
 pub mod rod;
+pub mod strain_energy;

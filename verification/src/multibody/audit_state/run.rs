@@ -26,8 +26,9 @@ use contactlab::model::multibody::scheme::MultibodyScheme;
 use contactlab::model::multibody::solver::{ContactState, MultibodyProblem, MultibodyStepView};
 
 use super::geometry::{gap_xi_length, local_points, size};
-use super::sums::{state_sums, PlaneLaw, StateSums};
+use super::sums::{plane_law, state_sums, StateSums};
 use crate::core::gate::{Check, GateVerdict};
+use crate::manufactured::strain_energy::PlaneLaw;
 use crate::multibody::spec::{Claims, MaterialSpec};
 
 /// C of the floors C ε (N + 30) S.
@@ -158,7 +159,7 @@ impl<'a> StateAuditor<'a> {
         }
         Ok(Self {
             problem,
-            laws: materials.iter().map(PlaneLaw::of).collect(),
+            laws: materials.iter().map(plane_law).collect(),
             k: problem.final_time / problem.steps as f64,
             allow_gain: allow_gain.to_vec(),
             previous: None,

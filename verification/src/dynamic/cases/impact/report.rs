@@ -8,6 +8,7 @@ use contactlab::model::dynamic::record::Conserving;
 use contactlab::model::dynamic::scheme::DynamicScheme;
 use contactlab::scene::dynamic::DynamicSceneFile;
 
+use crate::dynamic::audit_state::{state_audit_checks, state_audit_gate};
 use crate::dynamic::study::{audit_checks, audit_gate, plot_audits, AuditRun};
 
 use super::plots::{
@@ -91,6 +92,7 @@ impl CaseData<'_> {
         let mut penetration = Vec::new();
         let mut momentum = Vec::new();
         let mut energy = Vec::new();
+        let mut state = Vec::new();
         for (label, spec, out) in runs {
             let out = match out {
                 Ok(o) => o,
@@ -108,6 +110,14 @@ impl CaseData<'_> {
                 true,
                 "completes",
             ));
+            match &out.state {
+                Ok(a) => state.extend(state_audit_checks(label, a, out.claims)),
+                Err(e) => state.push(Check::holds(
+                    &format!("{label}: {e}"),
+                    false,
+                    "the state audit runs",
+                )),
+            }
             let s = out.summary();
             let audit = out.audit.summary();
             let conserving = self.conserving(&out.job);
@@ -202,6 +212,11 @@ impl CaseData<'_> {
                     .gates
                     .push(GateVerdict::from_checks(name.into(), kind, checks, note));
             }
+        }
+        if !state.is_empty() {
+            report
+                .gates
+                .push(state_audit_gate("audit recomputed from the state", state));
         }
     }
 

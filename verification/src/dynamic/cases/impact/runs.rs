@@ -11,11 +11,13 @@ use serde::{Deserialize, Serialize};
 use contactlab::model::dynamic::audit::EnergyAudit;
 use contactlab::model::dynamic::body::ElasticBody;
 use contactlab::model::dynamic::plane_body::PlaneBody;
+use contactlab::model::dynamic::record::{conserving, Conserving};
 use contactlab::model::dynamic::scheme::DynamicScheme;
 use contactlab::model::dynamic::solver::DynamicStats;
 use contactlab::scene::dynamic::{DynamicScene, DynamicSceneFile, SceneBody};
 
 use crate::core::overrides;
+use crate::dynamic::audit_state::{AuditSpec, StateAudit, StateAuditor};
 
 /// The normal contact treatment of a run (the scene's stiffness r and depth g are used).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -93,6 +95,11 @@ pub struct RunOutput {
     pub audit: EnergyAudit,
     pub stats: DynamicStats,
     pub snapshots: Vec<(f64, Vec<f64>)>,
+    /// The audit recomputed from the state (`crate::dynamic::audit_state`), or why it could not
+    /// be made.
+    pub state: Result<StateAudit, String>,
+    /// The identities the problem claims (`contactlab::model::dynamic::record::conserving`).
+    pub claims: Conserving,
 }
 
 /// `value × factor`, which must be a positive integer.
@@ -223,10 +230,15 @@ pub fn run_job(
     });
     let mut mv = vec![0.0; body.dofs()];
     let mut history = Vec::with_capacity(scene.problem.steps + 1);
+    let mut auditor = AuditSpec::of_scene(&scene.file)
+        .and_then(|spec| StateAuditor::new(&body, &scene.problem, spec));
     let sol = scene
         .solver()
         .map_err(|e| e.to_string())?
         .solve_with(&mut |v| {
+            if let Ok(a) = &mut auditor {
+                a.observe(v);
+            }
             pattern.symmetric_mul(body.mass(), v.velocity, &mut mv);
             history.push(StepRecord {
                 time: v.time,
@@ -240,6 +252,8 @@ pub fn run_job(
             });
         })
         .map_err(|e| e.to_string())?;
+    let state = auditor.and_then(StateAuditor::finish);
+    let claims = conserving(&scene.problem);
     Ok(RunOutput {
         job: *job,
         body,
@@ -249,6 +263,8 @@ pub fn run_job(
         audit: sol.audit,
         stats: sol.stats,
         snapshots: sol.snapshots,
+        state,
+        claims,
     })
 }
 

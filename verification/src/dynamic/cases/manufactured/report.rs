@@ -11,6 +11,7 @@ use crate::core::sweep::Against;
 use crate::core::context::RunContext;
 use crate::core::gate::{Check, GateVerdict};
 use crate::core::report::case_report::{CaseReport, Table};
+use crate::dynamic::audit_state::{state_audit_checks, state_audit_gate};
 use crate::dynamic::cases::manufactured::format::{
     Combination, ErrorName, ManufacturedCase, ManufacturedGate, SpaceStudy, Study, TimeStudy,
 };
@@ -130,6 +131,26 @@ pub(crate) fn audit_gates(report: &mut CaseReport, c: &ManufacturedCase, runs: &
             note,
         ));
     }
+    let mut state = Vec::new();
+    for r in runs {
+        let label = format!(
+            "{} on {n}×{n}, N = {}",
+            r.combination.label(),
+            r.steps,
+            n = r.divisions
+        );
+        match &r.state {
+            Ok(a) => state.extend(state_audit_checks(&label, a, r.claims)),
+            Err(e) => state.push(Check::holds(
+                &format!("{label}: {e}"),
+                false,
+                "the state audit runs",
+            )),
+        }
+    }
+    report
+        .gates
+        .push(state_audit_gate("audit recomputed from the state", state));
 }
 
 /// Time-study series, plots and table: ‖u_N − u(T)‖_{L²} on the affine field, the time error

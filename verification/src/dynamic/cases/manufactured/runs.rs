@@ -10,17 +10,23 @@ use contactlab::mesh::triangle::RectangleSide;
 use contactlab::model::dynamic::audit::EnergyAudit;
 use contactlab::model::dynamic::bar::MassMatrix;
 use contactlab::model::dynamic::contact_model::ContactModel;
+use contactlab::model::dynamic::record::{conserving, Conserving};
 use contactlab::model::dynamic::solver::{
     DynamicParams, DynamicProblem, DynamicSolver, DynamicStats,
 };
 use contactlab::model::quasistatic::plane::BoundarySelector;
 
 use crate::core::context::RunContext;
+use crate::dynamic::audit_state::geometry::Gamma3;
+use crate::dynamic::audit_state::run::Foundation;
+use crate::dynamic::audit_state::{AuditSpec, StateAudit, StateAuditor};
 use crate::dynamic::cases::manufactured::format::{
     Combination, ContactForce, SpaceStudy, TimeStudy,
 };
 use crate::dynamic::errors::{field_errors, FieldErrors};
+use crate::manufactured::dynamic_plane::ManufacturedLaw;
 use crate::manufactured::dynamic_plane::{DynamicManufactured, ManufacturedField};
+use crate::manufactured::strain_energy::{PlaneLaw, StrainEnergy};
 
 /// One run: its errors against the exact solution, its final state, audit and statistics.
 #[derive(Debug, Clone)]
@@ -33,6 +39,34 @@ pub(crate) struct RunResult {
     pub(crate) min_penetration: f64,
     pub(crate) audit: EnergyAudit,
     pub(crate) stats: DynamicStats,
+    /// The audit recomputed from the state, and the identities the problem claims.
+    pub(crate) state: Result<StateAudit, String>,
+    pub(crate) claims: Conserving,
+}
+
+/// What the state audit reads of the manufactured problem: its density and Lamé constants, the
+/// mass kind, and the foundation {y ≤ 0} under the bottom side with the stiffness r.
+fn audit_spec(m: &DynamicManufactured, mass: MassMatrix) -> AuditSpec {
+    let law = match m.law {
+        ManufacturedLaw::Linear => StrainEnergy::Linear,
+        ManufacturedLaw::StVenantKirchhoff => StrainEnergy::StVenantKirchhoff,
+        ManufacturedLaw::NeoHooke => StrainEnergy::NeoHooke,
+    };
+    AuditSpec {
+        density: m.density,
+        lumped: mass == MassMatrix::Lumped,
+        law: PlaneLaw {
+            law,
+            lambda: m.lambda,
+            mu: m.mu,
+        },
+        foundation: Some(Foundation {
+            level: 0.0,
+            gamma3: Gamma3::Sides(vec![RectangleSide::Bottom]),
+            stiffness: Some(m.stiffness),
+            tilted: false,
+        }),
+    }
 }
 
 /// Runs the manufactured problem on n × n squares with N steps.
@@ -66,10 +100,15 @@ pub(crate) fn solve(
         force_full_path: combination.full_path,
         ..DynamicParams::default()
     };
+    let claims = conserving(&problem);
+    let mut auditor = StateAuditor::new(&body, &problem, audit_spec(m, mass));
     let solver = DynamicSolver::new(problem, params).map_err(|e| e.to_string())?;
     let mut min_penetration = f64::INFINITY;
     let sol = solver
         .solve_with(&mut |v| {
+            if let Ok(a) = &mut auditor {
+                a.observe(v);
+            }
             for f in v.forces {
                 min_penetration = min_penetration.min(f.p);
             }
@@ -83,6 +122,7 @@ pub(crate) fn solve(
     let final_nodal = body.nodal(&sol.final_displacement);
     let triangles = body.data().mesh.triangles().to_vec();
     let errors = field_errors(m.field, &nodes, &triangles, &final_nodal, m.final_time)?;
+    let state = auditor.and_then(StateAuditor::finish);
     Ok(RunResult {
         combination,
         divisions,
@@ -91,6 +131,8 @@ pub(crate) fn solve(
         min_penetration,
         audit: sol.audit,
         stats: sol.stats,
+        state,
+        claims,
     })
 }
 
