@@ -2,6 +2,7 @@
 //! one scene-override mechanism, the run context, the sweep driver and convergence studies, gates,
 //! and reports.
 
+pub mod audit_floor;
 pub mod case;
 pub mod context;
 pub mod convergence;

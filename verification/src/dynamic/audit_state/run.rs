@@ -16,6 +16,7 @@
 //!   (E + Φ)_n − (E + Φ)_0 − Σ (W_ext + W_τ + D_b), and the rise (E + Φ)_n − (E + Φ)_0 − Σ W_ext,
 //!   over tol_n = floor(E_n + Φ_n) + floor(E_0 + Φ_0) + Σ_{j≤n} (floor(works_j) + ν_j + C ε s_j).
 
+use crate::core::audit_floor::{floor, max_nan, C};
 use serde::Serialize;
 
 use contactlab::model::dynamic::audit::AuditRecord;
@@ -33,15 +34,8 @@ use super::sums::{plane_sums, PlaneSums};
 use crate::core::gate::{Check, GateVerdict};
 use crate::manufactured::strain_energy::{PlaneLaw, StrainEnergy};
 
-/// C of the floors C ε (N + 30) S.
-const C: f64 = 2.0;
-
 /// A penetration p = level − (y + u_y) rounds by at most this many ε times its operands' size.
 const P_ROUNDING: f64 = 4.0;
-
-fn floor(terms: usize, magnitude: f64) -> f64 {
-    (C * f64::EPSILON * (terms as f64 + 30.0) * magnitude).max(f64::MIN_POSITIVE)
-}
 
 /// The foundation {y ≤ level} under Γ3 and its compliance, as the case's scene states them.
 #[derive(Debug, Clone)]
@@ -504,15 +498,6 @@ impl StateAuditor<'_> {
             let f = (w.friction_sign_floor + newton).max(f64::MIN_POSITIVE);
             a.friction_sign_ratio = max_nan(a.friction_sign_ratio, w.friction / f);
         }
-    }
-}
-
-/// max that keeps a NaN (a NaN ratio fails every gate).
-fn max_nan(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b.is_nan() {
-        f64::NAN
-    } else {
-        a.max(b)
     }
 }
 

@@ -15,6 +15,7 @@
 //!   E_n − E_0 − Σ_{j≤n} (W_ext + allowed gains)_j over tol_n = floor(E_n) + floor(E_0) +
 //!   Σ_{j≤n} (floor(W_j) + Σ_holding |λ| (|g₀| + |g₁|) + ν_j + C ε s_j).
 
+use crate::core::audit_floor::{floor, max_nan, C};
 use std::collections::BTreeMap;
 
 use serde::Serialize;
@@ -31,16 +32,9 @@ use crate::core::gate::{Check, GateVerdict};
 use crate::manufactured::strain_energy::PlaneLaw;
 use crate::multibody::spec::{Claims, MaterialSpec};
 
-/// C of the floors C ε (N + 30) S.
-const C: f64 = 2.0;
-
 /// A gap computed from coordinates of size |x| rounds by at most this many ε |x| (a cross
 /// product, a square root and a quotient: a generous count).
 const GAP_ROUNDING: f64 = 16.0;
-
-fn floor(terms: usize, magnitude: f64) -> f64 {
-    (C * f64::EPSILON * (terms as f64 + 30.0) * magnitude).max(f64::MIN_POSITIVE)
-}
 
 /// What the state-recomputed audit of a run shows. The `*_ratio` fields are maxima over the
 /// steps of a difference or a sign law's value over its floor (module docs): ≤ 1 passes.
@@ -389,15 +383,6 @@ impl<'a> StateAuditor<'a> {
         a.final_energy_ratio = energy / e0;
         a.entry_work_relative = self.entry_work / e0;
         a.allowed_gain_relative = self.allowed / e0;
-    }
-}
-
-/// max that keeps a NaN (a NaN ratio fails every gate).
-fn max_nan(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b.is_nan() {
-        f64::NAN
-    } else {
-        a.max(b)
     }
 }
 
